@@ -112,7 +112,9 @@ def read_poses(root: Path) -> list[tuple[str, Pose]]:
         if not parts or parts[0].startswith("#"):
             continue
         if len(parts) != 17:
-            raise DatasetError(f"{path}:{lineno}: expected a frame id and 16 numbers, got {len(parts)} fields")
+            raise DatasetError(
+                f"{path}:{lineno}: expected a frame id and 16 numbers, got {len(parts)} fields"
+            )
         try:
             values = [float(v) for v in parts[1:]]
         except ValueError:
@@ -166,7 +168,8 @@ class IsgReader:
         frame_id, pose = self.poses[index]
         base = self.root / FRAMES_DIR / frame_id
         rgb_path = next(
-            (p for ext in ("png", "jpg", "jpeg") if (p := Path(f"{base}.rgb.{ext}")).is_file()), None
+            (p for ext in ("png", "jpg", "jpeg") if (p := Path(f"{base}.rgb.{ext}")).is_file()),
+            None,
         )
         if rgb_path is None:
             raise FrameError(f"frame {frame_id!r}: missing colour image {base}.rgb.png|jpg")

@@ -38,7 +38,9 @@ class Frame:
         if self.rgb.ndim != 3 or self.rgb.shape[2] != 3:
             raise FrameError(f"{name}: rgb must be HxWx3, got shape {self.rgb.shape}")
         if self.rgb.shape[:2] != (h, w):
-            raise FrameError(f"{name}: rgb is {self.rgb.shape[1]}x{self.rgb.shape[0]}, intrinsics say {w}x{h}")
+            raise FrameError(
+                f"{name}: rgb is {self.rgb.shape[1]}x{self.rgb.shape[0]}, intrinsics say {w}x{h}"
+            )
         if self.rgb.dtype != np.uint8:
             raise FrameError(f"{name}: rgb must be uint8, got {self.rgb.dtype}")
         if self.depth.shape != (h, w):
@@ -48,7 +50,9 @@ class Frame:
         if np.isnan(self.depth).any() or (self.depth < 0).any():
             raise FrameError(f"{name}: depth has NaN or negative values")
         if self.instances is not None and self.instances.shape != (h, w):
-            raise FrameError(f"{name}: instance image is {self.instances.shape[::-1]}, expected {w}x{h}")
+            raise FrameError(
+                f"{name}: instance image is {self.instances.shape[::-1]}, expected {w}x{h}"
+            )
         return self
 
     @property

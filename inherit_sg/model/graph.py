@@ -119,7 +119,9 @@ class SceneGraph:
         object observations and keyframes are combined, then ``drop_id`` is removed."""
         keep, drop = self.get(keep_id), self.get(drop_id)
         if keep.layer != drop.layer:
-            raise ValueError(f"cannot merge {keep_id} ({keep.layer.name}) with {drop_id} ({drop.layer.name})")
+            raise ValueError(
+                f"cannot merge {keep_id} ({keep.layer.name}) with {drop_id} ({drop.layer.name})"
+            )
         for key in list(self._out[drop_id] | self._in[drop_id]):
             edge = self._edges[key]
             src = keep_id if edge.src == drop_id else edge.src
@@ -181,11 +183,19 @@ class SceneGraph:
 
     def out_edges(self, node_id: str, kind: EdgeKind | None = None) -> list[Edge]:
         """Edges leaving ``node_id``."""
-        return [e for k in self._out.get(node_id, ()) if (e := self._edges[k]) and (kind is None or e.kind is kind)]
+        return [
+            e
+            for k in self._out.get(node_id, ())
+            if (e := self._edges[k]) and (kind is None or e.kind is kind)
+        ]
 
     def in_edges(self, node_id: str, kind: EdgeKind | None = None) -> list[Edge]:
         """Edges entering ``node_id``."""
-        return [e for k in self._in.get(node_id, ()) if (e := self._edges[k]) and (kind is None or e.kind is kind)]
+        return [
+            e
+            for k in self._in.get(node_id, ())
+            if (e := self._edges[k]) and (kind is None or e.kind is kind)
+        ]
 
     def neighbours(
         self, node_id: str, kinds: Iterable[EdgeKind] | None = None, direction: str = "both"

@@ -197,7 +197,8 @@ class BBox3D:
         """Whether ``point`` lies inside the box grown by ``margin``."""
         p = np.asarray(point, dtype=float)
         return bool(
-            np.all(p >= np.asarray(self.min) - margin) and np.all(p <= np.asarray(self.max) + margin)
+            np.all(p >= np.asarray(self.min) - margin)
+            and np.all(p <= np.asarray(self.max) + margin)
         )
 
     def intersection_volume(self, other: BBox3D) -> float:

@@ -1,0 +1,598 @@
+"""Vocabulary of the synthetic world: room types, object kinds, colours and materials.
+
+It is shared by the house generator (what to place and how it looks) and the query
+generator (how people name things). Retrieval never imports it: the system must earn
+its understanding of words from its own lexicon and embeddings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+# Room types with the words people use for them.
+ROOM_SYNONYMS: dict[str, tuple[str, ...]] = {
+    "bedroom": ("bedroom", "sleeping room"),
+    "bathroom": ("bathroom", "washroom", "restroom"),
+    "kitchen": ("kitchen",),
+    "living room": ("living room", "lounge", "sitting room"),
+    "dining room": ("dining room",),
+    "office": ("office", "study", "home office"),
+    "hallway": ("hallway", "corridor", "hall"),
+    "laundry room": ("laundry room", "utility room"),
+    "garage": ("garage",),
+}
+
+# Named palette: name -> sRGB albedo. Names are what descriptions and queries use.
+COLOURS: dict[str, tuple[int, int, int]] = {
+    "red": (190, 40, 40),
+    "orange": (225, 120, 35),
+    "yellow": (225, 200, 50),
+    "green": (50, 140, 60),
+    "blue": (45, 80, 185),
+    "purple": (120, 60, 160),
+    "pink": (230, 140, 170),
+    "brown": (120, 75, 40),
+    "black": (30, 30, 30),
+    "white": (235, 235, 230),
+    "grey": (128, 128, 128),
+    "beige": (215, 195, 160),
+}
+
+MATERIALS: tuple[str, ...] = (
+    "wood",
+    "metal",
+    "plastic",
+    "fabric",
+    "leather",
+    "glass",
+    "ceramic",
+    "stone",
+)
+
+
+@dataclass(frozen=True)
+class ObjectKind:
+    """How one kind of object looks, where it goes and what it is for."""
+
+    label: str
+    size: tuple[float, float, float]  # typical width, depth, height in metres
+    synonyms: tuple[str, ...] = ()
+    functions: tuple[str, ...] = ()  # e.g. "sit", "sleep", "wash hands"
+    colours: tuple[str, ...] = tuple(COLOURS)
+    materials: tuple[str, ...] = ("wood",)
+    surface: bool = False  # small objects can stand on it
+    small: bool = False  # stands on a surface rather than the floor
+    wall: bool = False  # placed against a wall
+    mount_height: float = 0.0  # bottom height above the floor (wall-mounted things)
+
+
+def _k(label: str, size: tuple[float, float, float], **kw: object) -> ObjectKind:
+    return ObjectKind(label, size, **kw)  # type: ignore[arg-type]
+
+
+WOOD_METAL = ("wood", "metal")
+SOFT = ("fabric", "leather")
+
+OBJECT_KINDS: dict[str, ObjectKind] = {
+    k.label: k
+    for k in (
+        # furniture
+        _k(
+            "bed",
+            (1.6, 2.0, 0.55),
+            synonyms=("bed",),
+            functions=("sleep", "lie down"),
+            materials=("wood", "fabric"),
+            colours=("white", "blue", "grey", "beige", "green"),
+            wall=True,
+        ),
+        _k(
+            "nightstand",
+            (0.45, 0.4, 0.55),
+            synonyms=("nightstand", "bedside table"),
+            functions=("store",),
+            materials=WOOD_METAL,
+            colours=("brown", "white", "black"),
+            surface=True,
+        ),
+        _k(
+            "wardrobe",
+            (1.2, 0.6, 2.0),
+            synonyms=("wardrobe", "closet"),
+            functions=("store clothes",),
+            materials=("wood",),
+            colours=("brown", "white", "black"),
+            wall=True,
+        ),
+        _k(
+            "dresser",
+            (1.0, 0.5, 0.85),
+            synonyms=("dresser", "chest of drawers"),
+            functions=("store clothes",),
+            materials=("wood",),
+            colours=("brown", "white"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "desk",
+            (1.3, 0.65, 0.75),
+            synonyms=("desk", "writing desk"),
+            functions=("work",),
+            materials=WOOD_METAL,
+            colours=("brown", "white", "black"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "chair",
+            (0.5, 0.5, 0.9),
+            synonyms=("chair", "seat"),
+            functions=("sit",),
+            materials=("wood", "metal", "plastic"),
+            colours=("red", "blue", "black", "white", "brown", "green", "yellow"),
+        ),
+        _k(
+            "armchair",
+            (0.85, 0.85, 0.9),
+            synonyms=("armchair", "easy chair"),
+            functions=("sit", "relax"),
+            materials=SOFT,
+            colours=("red", "blue", "green", "grey", "beige", "brown"),
+        ),
+        _k(
+            "sofa",
+            (2.0, 0.9, 0.85),
+            synonyms=("sofa", "couch"),
+            functions=("sit", "relax", "lie down"),
+            materials=SOFT,
+            colours=("grey", "blue", "red", "green", "beige", "brown", "black"),
+            wall=True,
+        ),
+        _k(
+            "stool",
+            (0.4, 0.4, 0.65),
+            synonyms=("stool",),
+            functions=("sit",),
+            materials=("wood", "metal"),
+            colours=("black", "brown", "white", "red"),
+        ),
+        _k(
+            "coffee table",
+            (1.1, 0.6, 0.42),
+            synonyms=("coffee table", "low table"),
+            functions=("put things",),
+            materials=("wood", "glass"),
+            colours=("brown", "black", "white"),
+            surface=True,
+        ),
+        _k(
+            "dining table",
+            (1.6, 0.9, 0.75),
+            synonyms=("dining table", "table"),
+            functions=("eat",),
+            materials=("wood", "glass"),
+            colours=("brown", "white", "black"),
+            surface=True,
+        ),
+        _k(
+            "table",
+            (1.0, 0.7, 0.74),
+            synonyms=("table",),
+            functions=("put things",),
+            materials=("wood", "metal"),
+            colours=("brown", "white", "black", "grey"),
+            surface=True,
+        ),
+        _k(
+            "tv stand",
+            (1.4, 0.45, 0.5),
+            synonyms=("tv stand", "tv cabinet"),
+            functions=("store",),
+            materials=("wood",),
+            colours=("black", "brown", "white"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "bookshelf",
+            (1.0, 0.35, 1.8),
+            synonyms=("bookshelf", "bookcase", "shelf"),
+            functions=("store books",),
+            materials=("wood",),
+            colours=("brown", "white", "black"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "cabinet",
+            (0.9, 0.45, 0.9),
+            synonyms=("cabinet", "cupboard"),
+            functions=("store",),
+            materials=WOOD_METAL,
+            colours=("white", "brown", "grey"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "counter",
+            (2.0, 0.6, 0.9),
+            synonyms=("counter", "kitchen counter", "worktop"),
+            functions=("prepare food",),
+            materials=("stone", "wood"),
+            colours=("white", "grey", "black", "beige"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "sink",
+            (0.6, 0.5, 0.9),
+            synonyms=("sink", "washbasin", "basin"),
+            functions=("wash hands", "wash dishes"),
+            materials=("ceramic", "metal"),
+            colours=("white", "grey"),
+            wall=True,
+        ),
+        _k(
+            "stove",
+            (0.6, 0.6, 0.9),
+            synonyms=("stove", "cooker", "oven"),
+            functions=("cook",),
+            materials=("metal",),
+            colours=("black", "white", "grey"),
+            wall=True,
+        ),
+        _k(
+            "refrigerator",
+            (0.7, 0.7, 1.8),
+            synonyms=("refrigerator", "fridge"),
+            functions=("keep food cold",),
+            materials=("metal",),
+            colours=("white", "grey", "black"),
+            wall=True,
+        ),
+        _k(
+            "toilet",
+            (0.4, 0.65, 0.8),
+            synonyms=("toilet",),
+            functions=("use the toilet",),
+            materials=("ceramic",),
+            colours=("white",),
+            wall=True,
+        ),
+        _k(
+            "bathtub",
+            (1.7, 0.75, 0.55),
+            synonyms=("bathtub", "tub", "bath"),
+            functions=("bathe", "wash"),
+            materials=("ceramic",),
+            colours=("white", "beige"),
+            wall=True,
+        ),
+        _k(
+            "shower",
+            (0.9, 0.9, 2.0),
+            synonyms=("shower",),
+            functions=("shower", "wash"),
+            materials=("glass",),
+            colours=("white", "grey"),
+            wall=True,
+        ),
+        _k(
+            "washing machine",
+            (0.6, 0.6, 0.85),
+            synonyms=("washing machine", "washer"),
+            functions=("wash clothes",),
+            materials=("metal",),
+            colours=("white", "grey"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "dryer",
+            (0.6, 0.6, 0.85),
+            synonyms=("dryer", "tumble dryer"),
+            functions=("dry clothes",),
+            materials=("metal",),
+            colours=("white", "grey"),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "car",
+            (1.8, 4.2, 1.45),
+            synonyms=("car",),
+            functions=("drive",),
+            materials=("metal",),
+            colours=("red", "blue", "black", "white", "grey"),
+        ),
+        _k(
+            "workbench",
+            (1.6, 0.7, 0.9),
+            synonyms=("workbench",),
+            functions=("repair things",),
+            materials=("wood",),
+            colours=("brown",),
+            surface=True,
+            wall=True,
+        ),
+        _k(
+            "plant",
+            (0.45, 0.45, 1.1),
+            synonyms=("plant", "potted plant", "houseplant"),
+            functions=("decorate",),
+            materials=("ceramic",),
+            colours=("green",),
+        ),
+        _k(
+            "lamp",
+            (0.4, 0.4, 1.6),
+            synonyms=("lamp", "floor lamp", "standing lamp"),
+            functions=("light",),
+            materials=("metal",),
+            colours=("black", "white", "yellow", "grey"),
+        ),
+        _k(
+            "rug",
+            (2.0, 1.4, 0.02),
+            synonyms=("rug", "carpet"),
+            functions=("decorate",),
+            materials=("fabric",),
+            colours=("red", "blue", "beige", "grey", "green"),
+        ),
+        _k(
+            "mirror",
+            (0.6, 0.04, 0.9),
+            synonyms=("mirror",),
+            functions=("look at yourself",),
+            materials=("glass",),
+            colours=("grey",),
+            wall=True,
+            mount_height=1.0,
+        ),
+        _k(
+            "painting",
+            (0.9, 0.04, 0.6),
+            synonyms=("painting", "picture"),
+            functions=("decorate",),
+            materials=("wood",),
+            colours=("blue", "red", "green", "yellow", "orange", "purple"),
+            wall=True,
+            mount_height=1.3,
+        ),
+        _k(
+            "tv",
+            (1.2, 0.08, 0.7),
+            synonyms=("tv", "television"),
+            functions=("watch",),
+            materials=("plastic",),
+            colours=("black",),
+            small=True,
+        ),
+        # small objects that stand on surfaces
+        _k(
+            "table lamp",
+            (0.25, 0.25, 0.45),
+            synonyms=("table lamp", "desk lamp", "lamp"),
+            functions=("light",),
+            materials=("metal", "ceramic"),
+            colours=("white", "black", "yellow", "red", "blue"),
+            small=True,
+        ),
+        _k(
+            "monitor",
+            (0.6, 0.2, 0.4),
+            synonyms=("monitor", "computer screen", "screen"),
+            functions=("work",),
+            materials=("plastic",),
+            colours=("black", "white"),
+            small=True,
+        ),
+        _k(
+            "laptop",
+            (0.35, 0.25, 0.03),
+            synonyms=("laptop", "notebook computer"),
+            functions=("work",),
+            materials=("metal", "plastic"),
+            colours=("grey", "black"),
+            small=True,
+        ),
+        _k(
+            "mug",
+            (0.1, 0.1, 0.11),
+            synonyms=("mug", "cup"),
+            functions=("drink",),
+            materials=("ceramic",),
+            colours=("red", "blue", "white", "yellow", "green", "black"),
+            small=True,
+        ),
+        _k(
+            "vase",
+            (0.18, 0.18, 0.35),
+            synonyms=("vase",),
+            functions=("hold flowers",),
+            materials=("ceramic", "glass"),
+            colours=("blue", "white", "red", "green", "purple"),
+            small=True,
+        ),
+        _k(
+            "book",
+            (0.2, 0.15, 0.04),
+            synonyms=("book",),
+            functions=("read",),
+            materials=("fabric",),
+            colours=("red", "blue", "green", "yellow", "black"),
+            small=True,
+        ),
+        _k(
+            "bowl",
+            (0.22, 0.22, 0.09),
+            synonyms=("bowl",),
+            functions=("eat",),
+            materials=("ceramic", "glass"),
+            colours=("white", "blue", "red", "green"),
+            small=True,
+        ),
+        _k(
+            "plate",
+            (0.26, 0.26, 0.03),
+            synonyms=("plate", "dish"),
+            functions=("eat",),
+            materials=("ceramic",),
+            colours=("white", "blue"),
+            small=True,
+        ),
+        _k(
+            "microwave",
+            (0.5, 0.38, 0.3),
+            synonyms=("microwave", "microwave oven"),
+            functions=("heat food",),
+            materials=("metal",),
+            colours=("black", "white", "grey"),
+            small=True,
+        ),
+        _k(
+            "kettle",
+            (0.2, 0.16, 0.25),
+            synonyms=("kettle",),
+            functions=("boil water",),
+            materials=("metal", "plastic"),
+            colours=("black", "white", "red", "grey"),
+            small=True,
+        ),
+        _k(
+            "towel",
+            (0.4, 0.3, 0.08),
+            synonyms=("towel",),
+            functions=("dry hands",),
+            materials=("fabric",),
+            colours=("white", "blue", "pink", "yellow"),
+            small=True,
+        ),
+        _k(
+            "clock",
+            (0.3, 0.06, 0.3),
+            synonyms=("clock",),
+            functions=("tell time",),
+            materials=("plastic", "wood"),
+            colours=("black", "white", "brown"),
+            small=True,
+        ),
+        _k(
+            "bottle",
+            (0.08, 0.08, 0.28),
+            synonyms=("bottle",),
+            functions=("drink",),
+            materials=("glass", "plastic"),
+            colours=("green", "blue", "white"),
+            small=True,
+        ),
+        _k(
+            "toolbox",
+            (0.5, 0.25, 0.25),
+            synonyms=("toolbox", "tool box"),
+            functions=("repair things",),
+            materials=("metal", "plastic"),
+            colours=("red", "black", "yellow", "blue"),
+            small=True,
+        ),
+        _k(
+            "basket",
+            (0.45, 0.35, 0.3),
+            synonyms=("basket", "laundry basket"),
+            functions=("carry laundry",),
+            materials=("plastic",),
+            colours=("white", "blue", "beige"),
+            small=True,
+        ),
+        # building parts that are objects too
+        _k(
+            "door",
+            (0.9, 0.1, 2.05),
+            synonyms=("door", "doorway"),
+            functions=("go through",),
+            materials=("wood",),
+            colours=("white", "brown"),
+        ),
+        _k(
+            "window",
+            (1.2, 0.1, 1.2),
+            synonyms=("window",),
+            functions=("look outside",),
+            materials=("glass",),
+            colours=("white",),
+            wall=True,
+            mount_height=0.9,
+        ),
+        _k(
+            "stairs",
+            (1.0, 3.0, 3.0),
+            synonyms=("stairs", "staircase", "stairway"),
+            functions=("go upstairs", "go downstairs"),
+            materials=("wood", "stone"),
+            colours=("brown", "grey", "white"),
+        ),
+    )
+}
+
+# What each room type contains, as functional groups (the areas): group label -> members.
+# The generator picks groups for a room and places each group together.
+AREA_TEMPLATES: dict[str, dict[str, tuple[str, ...]]] = {
+    "bedroom": {
+        "sleeping area": ("bed", "nightstand", "nightstand", "table lamp", "book"),
+        "storage area": ("wardrobe", "dresser", "mirror"),
+        "reading corner": ("armchair", "lamp", "bookshelf", "book"),
+        "work area": ("desk", "chair", "table lamp", "laptop"),
+    },
+    "bathroom": {
+        "washing area": ("sink", "mirror", "towel", "cabinet"),
+        "toilet area": ("toilet",),
+        "bathing area": ("bathtub", "shower", "towel"),
+    },
+    "kitchen": {
+        "cooking area": ("counter", "stove", "sink", "refrigerator", "kettle", "microwave", "mug"),
+        "breakfast area": ("table", "chair", "chair", "bowl", "mug"),
+        "storage area": ("cabinet", "bottle"),
+    },
+    "living room": {
+        "tv area": ("sofa", "coffee table", "tv stand", "tv", "rug", "mug", "vase"),
+        "reading corner": ("armchair", "lamp", "bookshelf", "book", "plant"),
+        "decoration area": ("painting", "plant", "cabinet", "vase", "clock"),
+    },
+    "dining room": {
+        "dining area": (
+            "dining table",
+            "chair",
+            "chair",
+            "chair",
+            "chair",
+            "plate",
+            "bowl",
+            "vase",
+        ),
+        "storage area": ("cabinet", "painting", "bottle", "clock"),
+    },
+    "office": {
+        "work area": ("desk", "chair", "monitor", "table lamp", "mug"),
+        "storage area": ("bookshelf", "book", "cabinet", "clock"),
+        "meeting area": ("table", "chair", "chair", "plant"),
+    },
+    "hallway": {
+        "entrance area": ("cabinet", "mirror", "plant", "painting"),
+    },
+    "laundry room": {
+        "laundry area": ("washing machine", "dryer", "basket", "sink", "towel", "cabinet"),
+    },
+    "garage": {
+        "parking area": ("car",),
+        "workshop area": ("workbench", "toolbox", "cabinet", "stool"),
+    },
+}
+
+# Sizes people talk about, by how an object's volume compares with its kind's typical one.
+SIZE_WORDS = ("small", "medium", "large")
+
+
+def kinds_for_function(function: str) -> list[str]:
+    """Labels of object kinds that serve ``function``."""
+    return [k.label for k in OBJECT_KINDS.values() if function in k.functions]
