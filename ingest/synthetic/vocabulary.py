@@ -73,6 +73,7 @@ def _k(label: str, size: tuple[float, float, float], **kw: object) -> ObjectKind
 WOOD_METAL = ("wood", "metal")
 SOFT = ("fabric", "leather")
 
+# fmt: off
 OBJECT_KINDS: dict[str, ObjectKind] = {
     k.label: k
     for k in (
@@ -534,6 +535,8 @@ OBJECT_KINDS: dict[str, ObjectKind] = {
         ),
     )
 }
+
+# fmt: on
 
 # What each room type contains, as functional groups (the areas): group label -> members.
 # The generator picks groups for a room and places each group together.

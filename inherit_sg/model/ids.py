@@ -6,7 +6,7 @@ Node ids are strings with a layer prefix (``floor:0``, ``room:3``, ``area:12``,
 
 from __future__ import annotations
 
-from enum import Enum, IntEnum
+from enum import IntEnum, StrEnum
 from typing import NewType
 
 NodeId = NewType("NodeId", str)
@@ -36,7 +36,7 @@ _PREFIXES = {Layer.FLOOR: "floor", Layer.ROOM: "room", Layer.AREA: "area", Layer
 _PREFIX_TO_LAYER = {v: k for k, v in _PREFIXES.items()}
 
 
-class EdgeKind(str, Enum):
+class EdgeKind(StrEnum):
     """Edge types; the values are the public Kuzu relationship table names."""
 
     HAS_ROOM = "HAS_ROOM"  # Floor -> Room

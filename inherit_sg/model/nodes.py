@@ -10,7 +10,7 @@ from __future__ import annotations
 import struct
 import zlib
 from dataclasses import dataclass, field
-from enum import Enum
+from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -21,7 +21,7 @@ from inherit_sg.model.values import BBox3D, Pose, Vec3
 Vector = np.ndarray
 
 
-class ObjectStatus(str, Enum):
+class ObjectStatus(StrEnum):
     """Life-cycle of an object node across sessions."""
 
     ACTIVE = "active"  # seen in the latest session that looked at its place
