@@ -93,12 +93,12 @@ class Config(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    store: StoreConfig = Field(default_factory=StoreConfig)
-    embedder: EmbedderConfig = Field(default_factory=EmbedderConfig)
-    perception: PerceptionConfig = Field(default_factory=PerceptionConfig)
-    llm: LLMConfig = Field(default_factory=LLMConfig)
-    retrieval: RetrievalConfig = Field(default_factory=RetrievalConfig)
-    service: ServiceConfig = Field(default_factory=ServiceConfig)
+    store: StoreConfig = Field(default_factory=lambda: StoreConfig())
+    embedder: EmbedderConfig = Field(default_factory=lambda: EmbedderConfig())
+    perception: PerceptionConfig = Field(default_factory=lambda: PerceptionConfig())
+    llm: LLMConfig = Field(default_factory=lambda: LLMConfig())
+    retrieval: RetrievalConfig = Field(default_factory=lambda: RetrievalConfig())
+    service: ServiceConfig = Field(default_factory=lambda: ServiceConfig())
 
 
 def _parse_scalar(text: str) -> Any:

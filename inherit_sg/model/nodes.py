@@ -105,7 +105,7 @@ class RoomNode:
 
     id: NodeId
     label: str
-    floor_id: NodeId | None = None
+    floor_id: str | None = None
     position: Vec3 = (0.0, 0.0, 0.0)
     summary: str = ""
     mask: RoomMask | None = None
@@ -120,7 +120,7 @@ class AreaNode:
 
     id: NodeId
     label: str
-    room_id: NodeId | None = None
+    room_id: str | None = None
     position: Vec3 = (0.0, 0.0, 0.0)
     summary: str = ""
     text_embedding: Vector | None = None
@@ -145,9 +145,9 @@ class ObjectNode:
     last_seen: float = 0.0
     status: ObjectStatus = ObjectStatus.ACTIVE
     attributes: dict[str, Any] = field(default_factory=dict)  # colour, material, size …
-    area_id: NodeId | None = None
-    room_id: NodeId | None = None
-    floor_id: NodeId | None = None
+    area_id: str | None = None
+    room_id: str | None = None
+    floor_id: str | None = None
     layer: Layer = field(default=Layer.OBJECT, init=False, repr=False)
 
 
@@ -195,7 +195,7 @@ class Keyframe:
     session_id: str
     timestamp: float
     pose: Pose
-    floor_id: NodeId | None = None
+    floor_id: str | None = None
     frame_index: int = 0
     global_feature: Vector | None = None
     jpeg: bytes | None = None

@@ -21,7 +21,7 @@ def _vec3(values: Iterable[float], what: str) -> Vec3:
     out = tuple(float(v) for v in values)
     if len(out) != 3 or not all(math.isfinite(v) for v in out):
         raise ValueError(f"{what} must be 3 finite numbers, got {out!r}")
-    return out  # type: ignore[return-value]
+    return (out[0], out[1], out[2])
 
 
 @dataclass(frozen=True)
@@ -152,8 +152,8 @@ class Intrinsics:
 class BBox3D:
     """Axis-aligned box in the world frame."""
 
-    min: Vec3
-    max: Vec3
+    min: tuple[float, ...]
+    max: tuple[float, ...]
 
     def __post_init__(self) -> None:
         lo = _vec3(self.min, "bbox min")
@@ -169,14 +169,14 @@ class BBox3D:
         pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
         if len(pts) == 0:
             raise ValueError("cannot box an empty point set")
-        return cls(tuple(pts.min(axis=0)), tuple(pts.max(axis=0)))  # type: ignore[arg-type]
+        return cls(tuple(pts.min(axis=0)), tuple(pts.max(axis=0)))
 
     @classmethod
     def from_center_size(cls, center: Sequence[float], size: Sequence[float]) -> BBox3D:
         """Box from its centre and full extent."""
         c = np.asarray(center, dtype=float)
         h = np.asarray(size, dtype=float) / 2.0
-        return cls(tuple(c - h), tuple(c + h))  # type: ignore[arg-type]
+        return cls(tuple(c - h), tuple(c + h))
 
     @property
     def center(self) -> np.ndarray:
@@ -217,4 +217,4 @@ class BBox3D:
         """Smallest box containing both."""
         lo = np.minimum(self.min, other.min)
         hi = np.maximum(self.max, other.max)
-        return BBox3D(tuple(lo), tuple(hi))  # type: ignore[arg-type]
+        return BBox3D(tuple(lo), tuple(hi))

@@ -1,0 +1,1 @@
+"""The ``inherit-sg`` command line: a thin face over the library facade."""

@@ -1,0 +1,144 @@
+"""Entry point of the ``inherit-sg`` command.
+
+Commands that need no model (info, cypher, export, import) import nothing heavy: the
+facade imports torch, sentence-transformers and lancedb only where they are used.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from inherit_sg import __version__
+from inherit_sg.cli.output import handle_errors, print_json, print_table
+
+app = typer.Typer(
+    name="inherit-sg",
+    help="Incremental hierarchical semantic scene graphs: build, store and query robot maps.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+MapOption = Annotated[Path, typer.Option("--map", "-m", help="Map directory.")]
+JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON.")]
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"inherit-sg {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool, typer.Option("--version", callback=_version, is_eager=True, help="Show the version.")
+    ] = False,
+) -> None:
+    """INHerit-SG command line."""
+
+
+@app.command()
+@handle_errors
+def info(map_dir: MapOption, as_json: JsonOption = False) -> None:
+    """Counts per layer and edge type, sessions and bytes on disk of a map."""
+    from inherit_sg.facade import MapService
+
+    with MapService.open(map_dir) as service:
+        stats = service.stats()
+    if as_json:
+        print_json(stats)
+        return
+    typer.echo(f"map {stats['path']}  (schema v{stats['schema_version']})")
+    print_table(["table", "rows"], sorted(stats["nodes"].items()), title="nodes")
+    print_table(["relationship", "rows"], sorted(stats["edges"].items()), title="edges")
+    sessions = stats.get("sessions", [])
+    if sessions:
+        print_table(
+            ["session", "name", "frames", "keyframes"],
+            [[s["id"], s["name"], s["frames"], s["keyframes"]] for s in sessions],
+            title="sessions",
+        )
+    sizes = stats["bytes"]
+    typer.echo("bytes on disk: " + ", ".join(f"{k} {v:,}" for k, v in sizes.items()))
+
+
+@app.command()
+@handle_errors
+def cypher(
+    map_dir: MapOption,
+    query: Annotated[str, typer.Argument(help="A read-only Cypher query.")],
+    param: Annotated[
+        list[str] | None,
+        typer.Option("--param", "-p", help="Query parameter NAME=JSON (repeatable)."),
+    ] = None,
+    max_rows: Annotated[int, typer.Option(help="Stop after this many rows.")] = 1000,
+    as_json: JsonOption = False,
+) -> None:
+    """Run a read-only Cypher query; write clauses and procedures are refused."""
+    from inherit_sg.facade import MapService, parse_params
+
+    with MapService.open(map_dir) as service:
+        result = service.cypher(query, parse_params(param or []), max_rows=max_rows)
+    if as_json:
+        print_json(
+            {"columns": result.columns, "rows": result.rows, "truncated": result.truncated}
+        )
+        return
+    print_table(result.columns, result.rows)
+    if result.truncated:
+        typer.echo(f"(stopped after {max_rows} rows; use --max-rows)")
+
+
+@app.command("export")
+@handle_errors
+def export_map(
+    map_dir: MapOption,
+    out: Annotated[Path, typer.Argument(help="Output JSON file.")],
+    no_images: Annotated[bool, typer.Option(help="Leave keyframe JPEGs out.")] = False,
+    as_json: JsonOption = False,
+) -> None:
+    """Write a whole map (embeddings, masks, keyframes) to one lossless JSON file."""
+    from inherit_sg.facade import MapService
+
+    with MapService.open(map_dir) as service:
+        summary = service.export_json(out, images=not no_images)
+    if as_json:
+        print_json(summary)
+    else:
+        typer.echo(f"exported {summary['nodes']} nodes, {summary['edges']} edges, {summary['keyframes']} keyframes to {out}")
+
+
+@app.command("import")
+@handle_errors
+def import_map(
+    source: Annotated[Path, typer.Argument(help="File to import.")],
+    map_dir: MapOption,
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="json (INHerit-SG export) or spark-dsg.")
+    ] = "json",
+    label_space: Annotated[
+        Path | None, typer.Option(help="spark-dsg: JSON or CSV naming semantic label ids.")
+    ] = None,
+    as_json: JsonOption = False,
+) -> None:
+    """Create a map from an INHerit-SG JSON export or a Spark-DSG (Hydra) JSON graph."""
+    from inherit_sg.facade import import_into_new_map
+
+    summary = import_into_new_map(source, map_dir, fmt=fmt, label_space=label_space)
+    if as_json:
+        print_json(summary)
+    else:
+        typer.echo(f"imported {summary['nodes']} nodes and {summary['edges']} edges into {map_dir}")
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,90 @@
+"""Printing helpers shared by CLI commands: JSON conversion, tables, error exits."""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+import sys
+from collections.abc import Callable, Sequence
+from enum import Enum
+from functools import wraps
+from pathlib import Path
+from typing import Any, ParamSpec, TypeVar
+
+import typer
+
+from inherit_sg.errors import InheritSGError
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+def jsonable(value: Any) -> Any:
+    """Convert database and numpy values into plain JSON values."""
+    if value is None or isinstance(value, bool | int | str):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, Enum):
+        return value.value
+    if isinstance(value, bytes):
+        return {"base64": base64.b64encode(value).decode("ascii")}
+    if isinstance(value, Path):
+        return str(value)
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple | set):
+        return [jsonable(v) for v in value]
+    if hasattr(value, "tolist"):  # numpy arrays and scalars
+        return jsonable(value.tolist())
+    if hasattr(value, "isoformat"):
+        return value.isoformat()
+    return str(value)
+
+
+def print_json(data: Any) -> None:
+    """Write ``data`` as indented JSON on stdout."""
+    sys.stdout.write(json.dumps(jsonable(data), indent=2) + "\n")
+
+
+def cell(value: Any, width: int = 60) -> str:
+    """Short human-readable form of one value for a table cell."""
+    value = jsonable(value)
+    if isinstance(value, list) and value and all(isinstance(v, float) for v in value):
+        text = "[" + ", ".join(f"{v:.3g}" for v in value[:4]) + (", …]" if len(value) > 4 else "]")
+    elif isinstance(value, dict | list):
+        text = json.dumps(value)
+    else:
+        text = "" if value is None else str(value)
+    return text if len(text) <= width else text[: width - 1] + "…"
+
+
+def print_table(columns: Sequence[str], rows: Sequence[Sequence[Any]], title: str | None = None) -> None:
+    """Render rows as a rich table."""
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=title)
+    for col in columns:
+        table.add_column(str(col))
+    for row in rows:
+        table.add_row(*(cell(v) for v in row))
+    Console().print(table)
+
+
+def handle_errors(func: Callable[P, R]) -> Callable[P, R]:
+    """Turn library errors into a one-line message (or JSON with --json) and exit 2."""
+
+    @wraps(func)
+    def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
+        try:
+            return func(*args, **kwargs)
+        except InheritSGError as exc:
+            if kwargs.get("as_json"):
+                print_json(exc.to_dict())
+            else:
+                typer.secho(f"error: {exc.message}", fg=typer.colors.RED, err=True)
+            raise typer.Exit(code=2) from None
+
+    return wrapper

@@ -1,0 +1,154 @@
+"""MapService: the one facade that owns a map directory. The CLI and the REST API are
+thin faces over it (DESIGN.md §3)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from inherit_sg.config import Config, load_config
+from inherit_sg.errors import InputError, MapError
+from inherit_sg.store import CypherResult, MapStore
+
+EXPORT_FORMAT = "inherit-sg-map"
+EXPORT_VERSION = 1
+
+
+def parse_params(items: Iterable[str]) -> dict[str, Any]:
+    """``NAME=JSON`` pairs into a parameter dict (plain strings when not JSON)."""
+    params: dict[str, Any] = {}
+    for item in items:
+        name, sep, raw = item.partition("=")
+        if not sep or not name.strip().isidentifier():
+            raise InputError(f"parameter {item!r}: expected NAME=VALUE")
+        try:
+            params[name.strip()] = json.loads(raw)
+        except json.JSONDecodeError:
+            params[name.strip()] = raw
+    return params
+
+
+class MapService:
+    """Operations on one map directory, shared by the CLI and the REST service."""
+
+    def __init__(self, store: MapStore, config: Config) -> None:
+        self.store = store
+        self.config = config
+
+    @classmethod
+    def open(cls, path: str | Path, *, write: bool = False, config: Config | None = None) -> MapService:
+        """Open an existing map (read-only unless ``write``)."""
+        cfg = config or load_config()
+        return cls(MapStore.open(path, write=write, config=cfg), cfg)
+
+    def close(self) -> None:
+        """Release the map."""
+        self.store.close()
+
+    def __enter__(self) -> MapService:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # ------------------------------------------------------------ reads
+    def stats(self) -> dict[str, Any]:
+        """Counts per table, sessions and bytes on disk."""
+        return self.store.stats().to_dict()
+
+    def cypher(
+        self, query: str, params: dict[str, Any] | None = None, *, max_rows: int | None = 1000
+    ) -> CypherResult:
+        """Run a read-only Cypher query."""
+        return self.store.cypher(query, params, read_only=True, max_rows=max_rows)
+
+    # ------------------------------------------------------------ export
+    def export_json(self, out: str | Path, *, images: bool = True) -> dict[str, int]:
+        """Write the whole map as one JSON document (see :func:`import_json`)."""
+        from inherit_sg.exchange.records import (
+            edge_to_record,
+            keyframe_to_record,
+            node_to_record,
+            session_to_record,
+        )
+
+        graph = self.store.load_graph()
+        keyframe_ids = [row[0] for row in self.store.cypher("MATCH (k:Keyframe) RETURN k.id ORDER BY k.id").rows]
+        doc = {
+            "format": EXPORT_FORMAT,
+            "version": EXPORT_VERSION,
+            "map": self.store.info.to_dict(),
+            "nodes": [node_to_record(n) for n in graph.nodes()],
+            "edges": [edge_to_record(e) for e in graph.edges()],
+            "keyframes": [
+                keyframe_to_record(self.store.get_keyframe(k, with_image=images)) for k in keyframe_ids
+            ],
+            "sessions": [session_to_record(s) for s in self.store.sessions()],
+        }
+        Path(out).write_text(json.dumps(doc), encoding="utf-8")
+        return {"nodes": len(doc["nodes"]), "edges": len(doc["edges"]), "keyframes": len(keyframe_ids)}
+
+
+def _config_for_export(doc: dict[str, Any], base: Config) -> Config:
+    """The base config with the vector dimensions the exported map was made with."""
+    info = doc.get("map", {})
+    store = base.store.model_copy(
+        update={k: info[k] for k in ("visual_dim", "text_dim", "image_feature_dim") if k in info}
+    )
+    return base.model_copy(update={"store": store})
+
+
+def import_into_new_map(
+    source: str | Path,
+    map_dir: str | Path,
+    *,
+    fmt: str = "json",
+    label_space: str | Path | None = None,
+    config: Config | None = None,
+) -> dict[str, int]:
+    """Create ``map_dir`` from an INHerit-SG JSON export or a Spark-DSG JSON file."""
+    from inherit_sg.exchange.records import (
+        edge_from_record,
+        keyframe_from_record,
+        node_from_record,
+        session_from_record,
+    )
+    from inherit_sg.model import SceneGraph
+
+    cfg = config or load_config()
+    src = Path(source)
+    if not src.is_file():
+        raise InputError(f"file to import not found: {src}")
+    if fmt == "spark-dsg":
+        from inherit_sg.exchange.spark_dsg import load_label_space, spark_dsg_to_graph
+
+        names = load_label_space(label_space) if label_space else None
+        graph = spark_dsg_to_graph(src, names)
+        with MapStore.create(map_dir, cfg) as store:
+            store.write_changes(graph)
+        return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
+    if fmt != "json":
+        raise InputError(f"unknown import format {fmt!r}: use json or spark-dsg")
+    try:
+        doc = json.loads(src.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{src}: invalid JSON: {exc}") from None
+    if not isinstance(doc, dict) or doc.get("format") != EXPORT_FORMAT:
+        raise InputError(f"{src}: not an INHerit-SG map export (use --format spark-dsg for Hydra graphs)")
+    if int(doc.get("version", 0)) > EXPORT_VERSION:
+        raise MapError(f"{src}: export version {doc['version']} is newer than this inherit-sg understands")
+    graph = SceneGraph()
+    for rec in doc.get("nodes", []):
+        graph.add_or_update(node_from_record(rec))
+    for rec in doc.get("edges", []):
+        graph.add_edge(edge_from_record(rec))
+    keyframes = [keyframe_from_record(r) for r in doc.get("keyframes", [])]
+    with MapStore.create(map_dir, _config_for_export(doc, cfg)) as store:
+        for rec in doc.get("sessions", []):
+            store.upsert_session(session_from_record(rec))
+        if keyframes:
+            store.add_keyframes(keyframes)
+        store.write_changes(graph)
+    return {"nodes": len(graph), "edges": len(doc.get("edges", [])), "keyframes": len(keyframes)}
