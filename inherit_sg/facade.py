@@ -38,7 +38,9 @@ class MapService:
         self.config = config
 
     @classmethod
-    def open(cls, path: str | Path, *, write: bool = False, config: Config | None = None) -> MapService:
+    def open(
+        cls, path: str | Path, *, write: bool = False, config: Config | None = None
+    ) -> MapService:
         """Open an existing map (read-only unless ``write``)."""
         cfg = config or load_config()
         return cls(MapStore.open(path, write=write, config=cfg), cfg)
@@ -75,7 +77,9 @@ class MapService:
         )
 
         graph = self.store.load_graph()
-        keyframe_ids = [row[0] for row in self.store.cypher("MATCH (k:Keyframe) RETURN k.id ORDER BY k.id").rows]
+        keyframe_ids = [
+            row[0] for row in self.store.cypher("MATCH (k:Keyframe) RETURN k.id ORDER BY k.id").rows
+        ]
         doc = {
             "format": EXPORT_FORMAT,
             "version": EXPORT_VERSION,
@@ -83,12 +87,17 @@ class MapService:
             "nodes": [node_to_record(n) for n in graph.nodes()],
             "edges": [edge_to_record(e) for e in graph.edges()],
             "keyframes": [
-                keyframe_to_record(self.store.get_keyframe(k, with_image=images)) for k in keyframe_ids
+                keyframe_to_record(self.store.get_keyframe(k, with_image=images))
+                for k in keyframe_ids
             ],
             "sessions": [session_to_record(s) for s in self.store.sessions()],
         }
         Path(out).write_text(json.dumps(doc), encoding="utf-8")
-        return {"nodes": len(doc["nodes"]), "edges": len(doc["edges"]), "keyframes": len(keyframe_ids)}
+        return {
+            "nodes": len(doc["nodes"]),
+            "edges": len(doc["edges"]),
+            "keyframes": len(keyframe_ids),
+        }
 
 
 def _config_for_export(doc: dict[str, Any], base: Config) -> Config:
@@ -136,9 +145,13 @@ def import_into_new_map(
     except json.JSONDecodeError as exc:
         raise InputError(f"{src}: invalid JSON: {exc}") from None
     if not isinstance(doc, dict) or doc.get("format") != EXPORT_FORMAT:
-        raise InputError(f"{src}: not an INHerit-SG map export (use --format spark-dsg for Hydra graphs)")
+        raise InputError(
+            f"{src}: not an INHerit-SG map export (use --format spark-dsg for Hydra graphs)"
+        )
     if int(doc.get("version", 0)) > EXPORT_VERSION:
-        raise MapError(f"{src}: export version {doc['version']} is newer than this inherit-sg understands")
+        raise MapError(
+            f"{src}: export version {doc['version']} is newer than this inherit-sg understands"
+        )
     graph = SceneGraph()
     for rec in doc.get("nodes", []):
         graph.add_or_update(node_from_record(rec))

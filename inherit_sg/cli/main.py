@@ -84,9 +84,7 @@ def cypher(
     with MapService.open(map_dir) as service:
         result = service.cypher(query, parse_params(param or []), max_rows=max_rows)
     if as_json:
-        print_json(
-            {"columns": result.columns, "rows": result.rows, "truncated": result.truncated}
-        )
+        print_json({"columns": result.columns, "rows": result.rows, "truncated": result.truncated})
         return
     print_table(result.columns, result.rows)
     if result.truncated:
@@ -109,7 +107,9 @@ def export_map(
     if as_json:
         print_json(summary)
     else:
-        typer.echo(f"exported {summary['nodes']} nodes, {summary['edges']} edges, {summary['keyframes']} keyframes to {out}")
+        typer.echo(
+            f"exported {summary['nodes']} nodes, {summary['edges']} edges, {summary['keyframes']} keyframes to {out}"
+        )
 
 
 @app.command("import")

@@ -97,7 +97,9 @@ class SentenceTransformerEmbedder:
             try:
                 self._model = SentenceTransformer(str(self._dir), device=self._device)
             except Exception as exc:
-                raise ModelUnavailableError(f"cannot load text model from {self._dir}: {exc}") from exc
+                raise ModelUnavailableError(
+                    f"cannot load text model from {self._dir}: {exc}"
+                ) from exc
         return self._model
 
     def embed(self, texts: Sequence[str]) -> np.ndarray:
@@ -113,13 +115,17 @@ class SentenceTransformerEmbedder:
                 elif text not in missing:
                     missing.append(text)
         if missing:
-            vectors = self._load().encode(
-                missing,
-                batch_size=self._batch_size,
-                normalize_embeddings=True,
-                convert_to_numpy=True,
-                show_progress_bar=False,
-            ).astype(np.float32)
+            vectors = (
+                self._load()
+                .encode(
+                    missing,
+                    batch_size=self._batch_size,
+                    normalize_embeddings=True,
+                    convert_to_numpy=True,
+                    show_progress_bar=False,
+                )
+                .astype(np.float32)
+            )
             fresh = dict(zip(missing, vectors, strict=True))
             with self._lock:
                 for text, vec in fresh.items():

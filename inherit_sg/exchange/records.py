@@ -106,7 +106,9 @@ def edge_to_record(edge: Edge) -> dict[str, Any]:
 def edge_from_record(rec: dict[str, Any]) -> Edge:
     """Inverse of :func:`edge_to_record`."""
     try:
-        props = {k: (tuple(v) if isinstance(v, list) else v) for k, v in rec.get("props", {}).items()}
+        props = {
+            k: (tuple(v) if isinstance(v, list) else v) for k, v in rec.get("props", {}).items()
+        }
         return Edge.make(EdgeKind(rec["kind"]), rec["src"], rec["dst"], **props)
     except (KeyError, ValueError) as exc:
         raise InputError(f"malformed edge record {rec!r:.80}: {exc}") from None
