@@ -101,10 +101,14 @@ def test_room_mask_round_trip() -> None:
 
 def test_frame_validation_names_the_problem() -> None:
     k = Intrinsics(4, 3, 2.0, 2.0, 1.5, 1.0)
-    good = Frame(0, "f0", 0.0, np.zeros((3, 4, 3), np.uint8), np.ones((3, 4), np.float32), Pose.identity(), k)
+    good = Frame(
+        0, "f0", 0.0, np.zeros((3, 4, 3), np.uint8), np.ones((3, 4), np.float32), Pose.identity(), k
+    )
     assert good.validate() is good
-    bad = Frame(0, "f1", 0.0, np.zeros((4, 4, 3), np.uint8), np.ones((3, 4), np.float32), Pose.identity(), k)
-    with pytest.raises(FrameError, match="'f1'.*intrinsics say 4x3"):
+    bad = Frame(
+        0, "f1", 0.0, np.zeros((4, 4, 3), np.uint8), np.ones((3, 4), np.float32), Pose.identity(), k
+    )
+    with pytest.raises(FrameError, match=r"'f1'.*intrinsics say 4x3"):
         bad.validate()
     nan_depth = np.ones((3, 4), np.float32)
     nan_depth[0, 0] = np.nan
