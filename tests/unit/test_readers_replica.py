@@ -122,7 +122,9 @@ def test_wrong_image_size_and_8_bit_depth_raise_frame_errors(tmp_path: Path) -> 
 def test_missing_or_malformed_files_raise_dataset_errors(tmp_path: Path) -> None:
     root = _write(tmp_path / "s")
     (root / "cam_params.json").write_text(json.dumps({"camera": {"w": W, "h": H, "fx": FX}}))
-    with pytest.raises(DatasetError, match=r"cam_params\.json: camera is missing fy, cx, cy, scale"):
+    with pytest.raises(
+        DatasetError, match=r"cam_params\.json: camera is missing fy, cx, cy, scale"
+    ):
         ReplicaReader(root)
     (root / "cam_params.json").write_text("{not json")
     with pytest.raises(DatasetError, match="invalid JSON"):

@@ -36,7 +36,9 @@ def _pose(i: int) -> np.ndarray:
     return m
 
 
-def _write(root: Path, colour: tuple[int, int, float, float, float] = (160, 120, 120.0, 79.5, 59.5)) -> Path:
+def _write(
+    root: Path, colour: tuple[int, int, float, float, float] = (160, 120, 120.0, 79.5, 59.5)
+) -> Path:
     for sub in ("color", "depth", "pose", "intrinsic"):
         (root / sub).mkdir(parents=True)
     cw, ch, cf, ccx, ccy = colour
@@ -70,7 +72,9 @@ def test_reads_depth_grid_with_depth_intrinsics_and_skips_invalid_poses(tmp_path
     assert f.depth[5, 5] == pytest.approx(1.503)
     assert np.allclose(f.pose.matrix, _pose(3))
     # Optical axis horizontal along +y, image down = world down (z-up world).
-    assert np.allclose(f.pose.rotation[:, 2], [0, 1, 0]) and np.allclose(f.pose.rotation[:, 1], [0, 0, -1])
+    assert np.allclose(f.pose.rotation[:, 2], [0, 1, 0]) and np.allclose(
+        f.pose.rotation[:, 1], [0, 0, -1]
+    )
 
 
 @pytest.mark.parametrize(
@@ -78,7 +82,9 @@ def test_reads_depth_grid_with_depth_intrinsics_and_skips_invalid_poses(tmp_path
     [(160, 120, 120.0, 79.5, 59.5), (150, 110, 100.0, 70.0, 50.0)],
     ids=["same-fov", "other-fov-and-centre"],
 )
-def test_colour_is_resampled_onto_the_depth_rays(tmp_path: Path, colour: tuple[int, int, float, float, float]) -> None:
+def test_colour_is_resampled_onto_the_depth_rays(
+    tmp_path: Path, colour: tuple[int, int, float, float, float]
+) -> None:
     frame = ScanNetReader(_write(tmp_path / "s", colour)).read(0)
     expected = _ray_colour(DW, DH, DF, (DW - 1) / 2, (DH - 1) / 2)
     inner = (slice(2, -2), slice(2, -2))
@@ -91,7 +97,9 @@ def test_back_projection_lands_on_the_known_world_point(tmp_path: Path) -> None:
     k = frame.intrinsics
     u, v = 60, 10
     z = float(frame.depth[v, u])
-    world = frame.pose.transform_points(np.array([[(u - k.cx) / k.fx * z, (v - k.cy) / k.fy * z, z]]))[0]
+    world = frame.pose.transform_points(
+        np.array([[(u - k.cx) / k.fx * z, (v - k.cy) / k.fy * z, z]])
+    )[0]
     # Camera at (2, 2, 1.4) looking along +y: right is +x, up the image is +z.
     assert np.allclose(world, [2 + (u - k.cx) / k.fx * z, 2 + z, 1.4 - (v - k.cy) / k.fy * z])
     assert world[2] > 1.4  # a pixel above the image centre sees higher up
