@@ -1,0 +1,2 @@
+"""Evaluation against simulator ground truth (used by tests and benchmarks only; never by
+mapping or retrieval)."""
