@@ -1,0 +1,117 @@
+"""Turn a parsed :class:`Clause` into a :class:`ParsedQuery`: the target, the ordered and
+numbered constraints, and the conversation reference."""
+
+from __future__ import annotations
+
+from inherit_sg.retrieval.constraints import (
+    Constraint,
+    FunctionConstraint,
+    LabelConstraint,
+    Target,
+)
+from inherit_sg.retrieval.query import ParsedQuery, number_constraints
+from inherit_sg.retrieval.rules.clause import Clause
+from inherit_sg.retrieval.rules.cursor import weighted
+from inherit_sg.retrieval.rules.functions import match_function
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, ONE, VAGUE
+
+NO_TARGET = "no object, place or function found in the request"
+_NO_LABEL_KINDS = (GENERIC, GENERIC_AREA, VAGUE, ONE, ANAPHOR)
+_PLACE_ORDER = {"room": 0, "area": 1, "floor": 2}
+
+
+def _reference(clause: Clause, head: NP | None, refine: bool) -> str:
+    if clause.exclude_previous:
+        return "exclude_previous"
+    if head is not None:
+        if head.kind == ANAPHOR:
+            return "previous"
+        if head.other:
+            return "other"
+        if head.kind == ONE:
+            return "refine"
+    return "refine" if refine else "none"
+
+
+def _head(clause: Clause, reference: str) -> NP | None:
+    if clause.head is not None:
+        return clause.head
+    if clause.functions or clause.pending:
+        return NP(kind=GENERIC)  # "where can I sit?", "what is on the table?"
+    if clause.floor_np is not None and reference == "none" and not clause.places[1:]:
+        return NP(kind="floor", labels=["floor"], words=clause.floor_np.words)
+    if reference != "none" and clause.places:
+        return NP(kind=ONE)  # "what about upstairs?"
+    return None
+
+
+def _dedupe(constraints: list[Constraint]) -> list[Constraint]:
+    seen: set[str] = set()
+    out = []
+    for con in constraints:
+        key = repr({k: v for k, v in con.to_dict().items() if k not in ("id", "weight", "text")})
+        if key not in seen:
+            seen.add(key)
+            out.append(con)
+    return out
+
+
+def _guess_function(words: list[str], notes: list[str]) -> list[FunctionConstraint]:
+    """Purpose words anywhere in the request when the grammar found neither label nor
+    function ("a workspace with noise reduction" → work); weighted as a hedge."""
+    sense = match_function(None, words)
+    if sense is None:
+        return []
+    notes.append(f"function {sense[0]!r} guessed from purpose words")
+    return [
+        FunctionConstraint(
+            function=sense[0], labels=sense[1], weight=weighted("function", "hedge"), text=text
+        )
+        for text in [" ".join(words)]
+    ]
+
+
+def assemble(
+    text: str, clause: Clause, refine: bool, notes: list[str], words: list[str]
+) -> ParsedQuery:
+    """Build the final :class:`ParsedQuery` for ``text`` (``words``: its tokens)."""
+    reference = _reference(clause, clause.head, refine)
+    head = _head(clause, reference)
+    if head is None and reference == "none" and not clause.places:
+        clause.functions = list(_guess_function(words, notes))
+        head = NP(kind=GENERIC) if clause.functions else None
+    if head is None:
+        return ParsedQuery(
+            text=text,
+            reference=reference,
+            no_target_reason=None if reference != "none" else NO_TARGET,
+            notes=tuple(notes),
+        )
+    own = clause.pending + head.constraints
+    functions = [c for c in clause.functions + own if isinstance(c, FunctionConstraint)]
+    functions = list({f.function: f for f in reversed(functions)}.values())[::-1]
+    if not functions and not head.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
+        functions = list(_guess_function(words, notes))
+    head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]
+    target = head.target()
+    if head.kind == ONE and functions:
+        target = Target(layer=target.layer, any=True, function=functions[0].function)
+    constraints: list[Constraint] = []
+    if target.labels and head.kind not in _NO_LABEL_KINDS:
+        constraints.append(LabelConstraint(labels=target.labels, noun=head.noun, text=head.noun))
+    constraints += functions
+    constraints += _dedupe([c for c in own if c.kind == "attribute"])
+    constraints += [c for c in own if c.kind not in ("attribute", "function")]
+    constraints += clause.excluded_labels
+    places = sorted(clause.places + head.places, key=lambda c: _PLACE_ORDER[c.kind])
+    constraints += _dedupe(places)
+    if target.is_empty and head.kind not in (ONE,) and not constraints:
+        return ParsedQuery(text=text, reference=reference, no_target_reason=NO_TARGET,
+                           notes=tuple(notes))  # fmt: skip
+    return ParsedQuery(
+        text=text,
+        target=target,
+        constraints=number_constraints(tuple(constraints)),
+        reference=reference,
+        notes=tuple(notes),
+    )

@@ -1,0 +1,146 @@
+"""Verb phrases that name a function: "where can I wash my hands", "something to sit
+on", "a place for a quick snack", "while watching TV".
+
+A verb is read as a verb only in verb position (after "to", a modal, a person, "and",
+"for", "while" or at the start); after a determiner it is a noun ("a drink"). The verb
+and its object words pick a function sense (:mod:`.functions`). An object reached by a
+locative preposition ("sit on a recliner sofa") or by a light verb ("use the printer")
+is offered as the request's head.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from inherit_sg.retrieval import lexicon as lx
+from inherit_sg.retrieval.constraints import Constraint, FunctionConstraint
+from inherit_sg.retrieval.rules.cursor import weighted
+from inherit_sg.retrieval.rules.functions import match_function, open_function
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT
+from inherit_sg.retrieval.rules.tagger import Tok
+
+if TYPE_CHECKING:
+    from inherit_sg.retrieval.rules.grammar import Grammar
+
+# Verbs whose "on / in / at" object is where the function happens.
+_LOCATIVE = frozenset({
+    "sit", "sit down", "lie", "lie down", "sleep", "nap", "relax", "rest", "eat", "dine",
+    "work", "study", "read", "lounge", "recline", "perch", "wait",
+})  # fmt: skip
+_VERB_CONTEXT = (
+    "to", "modal", "seeker", "and", "or", "for", "while", "rel", "wh", "comma", "overb", "sub",
+    "neg",
+)  # fmt: skip
+_LOCATIVE_PREPS = frozenset({"on", "in", "at", "inside", "upon", "on top of"})
+_VERB_FILLERS = ("want", "need", "like", "possible", "wish")
+
+
+def verb_reading(tok: Tok) -> str | None:
+    """The lemma ``tok`` has as a function or light verb, if any."""
+    if tok.has("fverb"):
+        return str(tok.tags["fverb"])
+    if tok.has("have"):
+        return "have"
+    verb = tok.tags.get("overb")
+    return verb if verb in lx.LIGHT_VERBS else None
+
+
+def is_verb_here(g: Grammar) -> bool:
+    """Whether the current token is a verb in verb position."""
+    tok = g.peek()
+    if tok is None or verb_reading(tok) is None:
+        return False
+    prev = g.peek(-1) if g.i > 0 else None
+    if prev is None:
+        return not tok.has("room", "noun") or (tok.has("fverb") and g.at("det", k=1))
+    if prev.has(*_VERB_CONTEXT) or (prev.has("adv") and not prev.has("det")):
+        return not prev.has("det")
+    if prev.has("filler"):
+        if any(w in prev.text for w in _VERB_FILLERS):
+            return True
+        if prev.text.endswith(" to"):  # "go to relax" (but "go to the study")
+            return not tok.has("noun", "room", "unk")
+    return False
+
+
+def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
+    """Parse a verb phrase at the cursor → function constraints and a head candidate."""
+    start = g.i
+    tok = g.advance()
+    verb = verb_reading(tok) or tok.text
+    if g.take_neg():
+        g.notes.append(f"negation before verb {tok.text!r} ignored")
+    stress = g.take_stress()
+    while g.at("adv") and not g.at("prep"):
+        g.advance()
+    head: NP | None = None
+    obj: NP | None = None
+    nxt = g.peek()
+    if nxt is not None and nxt.text in _LOCATIVE_PREPS and verb in _LOCATIVE:
+        snap = g.state()
+        g.advance()
+        place = g.parse_np(landmark=True)
+        if place is not None and place.kind == OBJECT and place.known:
+            head = place
+        else:
+            g.restore(snap)
+            if place is None:
+                g.advance()  # a particle: "something to sit on"
+    elif nxt is not None and _object_marker(nxt, verb) and g.np_start(1):
+        g.advance()  # "dispose of trash", "check for updates", "engage in conversation"
+        obj = _objects(g)
+    elif g.np_start() and not g.at("floor"):
+        obj = _objects(g)
+    words = [t.text for t in g.toks[start + 1 : g.i]]
+    sense = match_function(verb, words, obj.words if obj is not None else None)
+    if sense is None and verb in lx.LIGHT_VERBS:
+        if obj is not None and obj.kind != ANAPHOR:
+            g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
+        return [], obj
+    function, labels = sense if sense is not None else (open_function(verb, words), ())
+    if sense is None:
+        g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
+    span = " ".join([tok.text, *words]).strip()
+    weight = weighted("function", stress)
+    made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
+    return [made], head
+
+
+def _object_marker(tok: Tok, verb: str) -> bool:
+    if tok.has("of"):
+        return True
+    if tok.has("for"):
+        return verb not in _LOCATIVE
+    return tok.text == "in" and verb in lx.LIGHT_VERBS
+
+
+def _objects(g: Grammar) -> NP | None:
+    """The verb's object, with coordinated ones ("personal items or documents")."""
+    obj = g.parse_np(landmark=True)
+    while obj is not None and g.at("and", "or") and g.np_start(1) and not g.at("fverb", k=1):
+        g.advance()
+        more = g.parse_np(landmark=True)
+        if more is not None:
+            obj.words += [*more.words]
+    return obj
+
+
+def parse_purpose(g: Grammar) -> tuple[list[Constraint], NP | None]:
+    """After "to" / "for" / "while": a verb phrase, or a purpose noun ("for a meeting")."""
+    tok = g.peek()
+    if tok is not None and verb_reading(tok) is not None and not g.at("det", k=-1):
+        return parse_vp(g)
+    if not g.np_start():
+        return [], None
+    snap = g.state()
+    g.parse_np(landmark=True)
+    words = [t.text for t in g.toks[snap[0] : g.i]]
+    sense = match_function(None, words)
+    if sense is None:
+        g.restore(snap)  # not a purpose: the phrase is parsed as an ordinary one
+        return [], None
+    function, labels = sense
+    made = FunctionConstraint(
+        function=function, labels=labels, weight=g.weight("function"), text=" ".join(words)
+    )
+    return [made], None

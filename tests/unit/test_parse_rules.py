@@ -1,0 +1,164 @@
+"""Rule parser behaviour: text checks, tokenisation, lexicon helpers, negation scope,
+weights, word order and robustness to arbitrary input."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from inherit_sg.errors import QueryTextError
+from inherit_sg.retrieval import RuleParser, parse_rules
+from inherit_sg.retrieval.lexicon import singular, verb_lemma
+from inherit_sg.retrieval.rules import MAX_QUERY_CHARS, check_query_text, parse_uncached, tokenize
+from inherit_sg.retrieval.rules.tagger import canonical_noun, room_type
+
+
+@pytest.mark.parametrize(
+    ("bad", "message"),
+    [
+        ("", "empty"),
+        ("   \n\t ", "empty"),
+        ("x" * (MAX_QUERY_CHARS + 1), "1001 characters"),
+        (b"the chair", "must be text"),
+        (None, "must be text"),
+        (42, "must be text"),
+        ("the chair\x00", "control character"),
+        ("?!? 123 ...", "no words"),
+    ],
+)
+def test_bad_text_raises_query_text_error(bad: object, message: str) -> None:
+    with pytest.raises(QueryTextError, match=message):
+        check_query_text(bad)
+    with pytest.raises(QueryTextError):
+        parse_rules(bad)  # type: ignore[arg-type]
+
+
+def test_long_but_allowed_text_parses() -> None:
+    text = ("the red chair " * 80)[:MAX_QUERY_CHARS]
+    assert parse_rules(text).target.labels == ("chair",)
+
+
+def test_tokenize_normalises() -> None:
+    assert tokenize("Where's the TV-stand? I can't see it") == [
+        "where", "is", "the", "tv", "stand", ",", "i", "can", "not", "see", "it",
+    ]  # fmt: skip
+    assert tokenize("the productive_work_environment") == [
+        "the",
+        "productive",
+        "work",
+        "environment",
+    ]
+    assert tokenize("It isn’t red!") == ["it", "is", "not", "red"]
+    assert tokenize("CoffeeTable3") == ["coffee", "table", "3"]
+
+
+def test_singular_and_lemma() -> None:
+    cases = {"chairs": "chair", "shelves": "shelf", "benches": "bench", "libraries": "library",
+             "glasses": "glass", "tvs": "tv", "stairs": "stairs", "bus": "bus", "people": "person"}  # fmt: skip
+    for plural, single in cases.items():
+        assert singular(plural) == single
+    known = frozenset({"sit", "store", "chat", "relax", "dry"})
+    assert verb_lemma("sitting", known) == "sit"
+    assert verb_lemma("storing", known) == "store"
+    assert verb_lemma("chatting", known) == "chat"
+    assert verb_lemma("relaxes", known) == "relax"
+    assert verb_lemma("dried", known) == "dry"
+
+
+def test_synonyms_plurals_and_open_vocabulary() -> None:
+    assert canonical_noun("couches") == ("sofa",)
+    assert canonical_noun("Fridge") == ("refrigerator",)
+    assert canonical_noun("security scanners") == ("security scanner",)
+    assert canonical_noun("flux capacitors") == ("flux capacitor",)
+    assert room_type("restroom") == "bathroom"
+    assert room_type("cafe lounge") == "living room"
+    assert room_type("atrium") is None
+    unknown = parse_rules("where is the flux capacitor")
+    assert unknown.target.labels == ("capacitor",) and unknown.target.noun == "flux capacitor"
+
+
+def test_negation_scopes_exactly_one_constraint() -> None:
+    parsed = parse_rules("the red mug not on the table next to the window in the kitchen")
+    negated = {c.id: c.negated for c, _ in parsed.walk()}
+    assert [c.kind for c in parsed.constraints] == ["label", "attribute", "relation", "room"]
+    assert negated == {"c1": False, "c2": False, "c3": True, "c3.1": False, "c4": False}
+    double = parse_rules("a chair that is not not red")
+    assert [c.negated for c in double.of_kind("attribute")] == [False]
+
+
+def test_room_and_floor_phrases_attach_to_the_head() -> None:
+    parsed = parse_rules("the mug on the table next to the window in the kitchen upstairs")
+    table = parsed.of_kind("relation")[0]
+    nested_kinds = [c.kind for c, _ in parsed.walk()]
+    assert nested_kinds == ["label", "relation", "relation", "room", "floor"]
+    assert table.landmark.target.labels == ("table",)  # type: ignore[union-attr]
+
+
+def test_word_order_does_not_matter() -> None:
+    a = parse_rules("the red mug in the kitchen")
+    b = parse_rules("in the kitchen, the red mug")
+    assert a.target == b.target
+    assert [c.to_dict() | {"text": ""} for c in a.constraints] == [
+        c.to_dict() | {"text": ""} for c in b.constraints
+    ]
+
+
+def test_politeness_and_filler_are_ignored() -> None:
+    plain = parse_rules("the couch in the living room")
+    for text in (
+        "Could you please take me to the couch in the living room?",
+        "hey robot, I'm looking for the couch in the living room, thanks",
+        "Can you show me where the couch in the living room is located?",
+    ):
+        polite = parse_rules(text)
+        assert polite.target == plain.target
+        assert [c.kind for c in polite.constraints] == [c.kind for c in plain.constraints]
+
+
+def test_emphasis_and_hedges_change_weights() -> None:
+    emph = parse_rules("a chair that must be red")
+    hedge = parse_rules("a chair, ideally red")
+    assert emph.of_kind("attribute")[0].weight == pytest.approx(0.9)
+    assert hedge.of_kind("attribute")[0].weight == pytest.approx(0.3)
+
+
+def test_global_and_empty_requests_say_why() -> None:
+    global_q = parse_rules("What purpose does this space primarily serve?")
+    assert global_q.no_target_reason is not None and "global" in global_q.no_target_reason
+    nothing = parse_rules("thanks a lot")
+    assert nothing.no_target_reason is not None and not nothing.has_target
+
+
+def test_parser_object_and_cache() -> None:
+    parser = RuleParser()
+    first = parser.parse("the lamp next to the bed")
+    assert parser.parse("the lamp next to the bed") is first
+    assert parse_uncached("the lamp next to the bed") == first
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(min_size=1, max_size=200))
+def test_arbitrary_text_never_crashes(text: str) -> None:
+    try:
+        parsed = parse_rules(text)
+    except QueryTextError:
+        return
+    assert parsed.text == text.strip()
+    assert parsed.has_target or parsed.no_target_reason is not None or parsed.reference != "none"
+
+
+WORDS = ["the", "a", "red", "chair", "not", "on", "in", "kitchen", "with", "no", "it", "that",
+         "is", "between", "and", "upstairs", "closest", "to", "one", "second", "floor", "sit",
+         "where", "can", "i", "except", "table", "of", ",", "bigger", "something", "which"]  # fmt: skip
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.lists(st.sampled_from(WORDS), min_size=1, max_size=14))
+def test_word_salad_from_the_lexicon_never_crashes(words: list[str]) -> None:
+    text = " ".join(words)
+    if not any(c.isalpha() for c in text):
+        return
+    parsed = parse_rules(text)
+    ids = [c.id for c, _ in parsed.walk()]
+    assert len(ids) == len(set(ids))
