@@ -1,0 +1,150 @@
+"""Colour naming from pixels.
+
+An object's colour is estimated from its masked pixels in a way that is robust to
+shading: Lambertian shading scales linear RGB, so the *chromaticity* (rgb / sum) of a
+surface does not change with it while its luminance does. We take the median
+chromaticity of the better-lit pixels and the upper-quartile luminance as the "lit"
+brightness, rebuild one representative colour from them, convert it to CIELAB and name
+it after the nearest prototype of a small named palette (several prototypes per name,
+e.g. navy and sky blue are both "blue").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+COLOUR_NAMES: tuple[str, ...] = (
+    "red",
+    "orange",
+    "yellow",
+    "green",
+    "blue",
+    "purple",
+    "pink",
+    "brown",
+    "black",
+    "white",
+    "grey",
+    "beige",
+)
+
+# sRGB prototypes per name: the typical shade first, then common variants.
+_PROTOTYPES: dict[str, tuple[tuple[int, int, int], ...]] = {
+    "red": ((190, 40, 40), (220, 30, 35), (140, 20, 25), (200, 70, 60)),
+    "orange": ((225, 120, 35), (250, 145, 20), (225, 95, 40)),
+    "yellow": ((225, 200, 50), (250, 230, 90), (200, 175, 40)),
+    "green": ((50, 140, 60), (30, 95, 45), (120, 185, 95), (95, 115, 50), (40, 150, 120)),
+    "blue": ((45, 80, 185), (30, 45, 115), (105, 150, 220), (40, 125, 170)),
+    "purple": ((120, 60, 160), (75, 40, 105), (165, 110, 200), (140, 50, 125)),
+    "pink": ((230, 140, 170), (245, 180, 200), (220, 95, 150)),
+    "brown": ((120, 75, 40), (85, 55, 30), (150, 100, 60), (100, 70, 55)),
+    "black": ((30, 30, 30), (12, 12, 14)),
+    "white": ((235, 235, 230), (252, 252, 252)),
+    "grey": ((128, 128, 128), (80, 80, 82), (175, 175, 175), (105, 110, 115)),
+    "beige": ((215, 195, 160), (230, 215, 185), (195, 175, 135)),
+}
+
+_LUMA = np.array([0.2126, 0.7152, 0.0722], dtype=np.float64)
+_RGB_TO_XYZ = np.array(
+    [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]
+)
+_WHITE = _RGB_TO_XYZ.sum(axis=1)
+# Lightness differences count less than hue/chroma ones: shading moves lightness.
+_L_WEIGHT = 0.6
+
+
+def _decode(c: np.ndarray) -> np.ndarray:
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+_LINEAR_LUT = _decode(np.arange(256, dtype=np.float64) / 255.0)
+
+
+def srgb_to_linear(rgb: np.ndarray | tuple[float, ...]) -> np.ndarray:
+    """sRGB in [0, 255] (any shape, last axis 3) → linear RGB in [0, 1]."""
+    arr = np.asarray(rgb)
+    if arr.dtype == np.uint8:
+        return _LINEAR_LUT[arr]
+    return _decode(arr.astype(np.float64) / 255.0)
+
+
+def linear_to_srgb(lin: np.ndarray) -> np.ndarray:
+    """Linear RGB in [0, 1] → sRGB in [0, 255] (float)."""
+    c = np.clip(np.asarray(lin, dtype=np.float64), 0.0, 1.0)
+    return 255.0 * np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
+
+
+def linear_to_lab(lin: np.ndarray) -> np.ndarray:
+    """Linear RGB (..., 3) → CIELAB (..., 3) under D65: L in [0, 100]."""
+    xyz = np.asarray(lin, dtype=np.float64) @ _RGB_TO_XYZ.T / _WHITE
+    f = np.where(xyz > (6 / 29) ** 3, np.cbrt(xyz), xyz / (3 * (6 / 29) ** 2) + 4 / 29)
+    return np.stack(
+        [116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]), 200 * (f[..., 1] - f[..., 2])],
+        axis=-1,
+    )
+
+
+def _prototype_table() -> tuple[np.ndarray, list[str]]:
+    names = [n for n in COLOUR_NAMES for _ in _PROTOTYPES[n]]
+    rgb = np.array([p for n in COLOUR_NAMES for p in _PROTOTYPES[n]], dtype=np.float64)
+    return linear_to_lab(srgb_to_linear(rgb)), names
+
+
+_PROTO_LAB, _PROTO_NAMES = _prototype_table()
+
+
+def representative_colour(
+    rgb: np.ndarray, mask: np.ndarray | None = None, max_pixels: int = 4096
+) -> np.ndarray | None:
+    """Shading-robust representative sRGB colour (3 floats in [0, 255]) of the masked
+    pixels of an (H, W, 3) uint8 image (all pixels when ``mask`` is None); None when
+    the mask is empty. Large masks are subsampled to ``max_pixels`` with a fixed stride."""
+    if mask is None:
+        px = rgb.reshape(-1, 3)
+    else:
+        m = np.asarray(mask, dtype=bool)
+        rows, cols = np.flatnonzero(m.any(axis=1)), np.flatnonzero(m.any(axis=0))
+        if rows.size == 0:
+            return None
+        ys, xs = slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1)
+        px = rgb[ys, xs][m[ys, xs]]
+    if px.shape[0] == 0:
+        return None
+    if px.shape[0] > max_pixels:
+        px = px[:: -(-px.shape[0] // max_pixels)]
+    lin = srgb_to_linear(px)
+    luma = lin @ _LUMA
+    lit = float(np.percentile(luma, 75))
+    if lit < 1e-4:
+        return np.zeros(3)
+    # Chromaticity of dim pixels is dominated by noise: use the better-lit ones.
+    bright = luma >= np.percentile(luma, 20)
+    sums = lin[bright].sum(axis=1, keepdims=True)
+    chroma = np.median(lin[bright] / np.maximum(sums, 1e-6), axis=0)
+    chroma = chroma / max(float(chroma.sum()), 1e-6)
+    rep = chroma * (lit / max(float(chroma @ _LUMA), 1e-6))
+    return np.asarray(linear_to_srgb(rep), dtype=np.float64)
+
+
+def name_rgb(colour: np.ndarray | tuple[float, float, float]) -> str:
+    """Palette name of one sRGB colour (components in [0, 255])."""
+    return rank_colours(colour)[0][0]
+
+
+def rank_colours(colour: np.ndarray | tuple[float, float, float]) -> list[tuple[str, float]]:
+    """Palette names ordered by weighted CIELAB distance to ``colour`` (best first),
+    each with the distance to its nearest prototype."""
+    lab = linear_to_lab(srgb_to_linear(np.asarray(colour, dtype=np.float64)))
+    diff = _PROTO_LAB - lab
+    diff[:, 0] *= _L_WEIGHT
+    dist = np.sqrt((diff**2).sum(axis=1))
+    best: dict[str, float] = {}
+    for name, d in zip(_PROTO_NAMES, dist, strict=True):
+        best[name] = min(best.get(name, np.inf), float(d))
+    return sorted(best.items(), key=lambda kv: kv[1])
+
+
+def colour_name(rgb: np.ndarray, mask: np.ndarray | None = None) -> str:
+    """Name of the dominant colour of the masked pixels ("unknown" for an empty mask)."""
+    rep = representative_colour(rgb, mask)
+    return "unknown" if rep is None else name_rgb(rep)

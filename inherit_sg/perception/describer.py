@@ -1,0 +1,98 @@
+"""Offline describer: a template sentence from what was measured — the colour named
+from the masked pixels, the size from the 3D extent, the room from the map — and the
+fallback wrapper that lets a model-backed describer degrade to it.
+
+Example: ``"a red chair, about 0.5 × 0.5 × 0.9 m, medium-sized, in the kitchen"``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import threading
+import time
+
+from inherit_sg.errors import ModelUnavailableError
+from inherit_sg.perception.base import Describer, ObjectObservation
+from inherit_sg.perception.colour_names import colour_name
+
+log = logging.getLogger(__name__)
+
+SMALL_MAX_SIDE = 0.5
+SMALL_MAX_VOLUME = 0.03
+LARGE_MIN_SIDE = 1.5
+LARGE_MIN_VOLUME = 0.5
+
+
+def size_class(extent: tuple[float, float, float]) -> str:
+    """ "small", "medium" or "large" from the longest side and the volume (metres)."""
+    longest = max(extent)
+    volume = math.prod(max(0.0, e) for e in extent)
+    if longest >= LARGE_MIN_SIDE or volume >= LARGE_MIN_VOLUME:
+        return "large"
+    if longest < SMALL_MAX_SIDE and volume < SMALL_MAX_VOLUME:
+        return "small"
+    return "medium"
+
+
+def _dims(extent: tuple[float, float, float]) -> str:
+    def fmt(v: float) -> str:
+        return f"{v:.2f}".rstrip("0").rstrip(".") if v < 0.1 else f"{v:.1f}"
+
+    return " × ".join(fmt(max(0.0, v)) for v in extent)
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1].lower() in "aeiou" else "a"
+
+
+class TemplateDescriber:
+    """Deterministic description from measured colour, size and room context."""
+
+    def __init__(self) -> None:
+        self.name = "offline"
+
+    def describe(self, obs: ObjectObservation) -> str:
+        """E.g. "a red chair, about 0.5 × 0.5 × 0.9 m, medium-sized, in the kitchen"."""
+        label = obs.label.strip().lower() or "object"
+        colour = colour_name(obs.rgb, obs.mask)
+        noun = label if colour == "unknown" else f"{colour} {label}"
+        parts = [f"{_article(noun)} {noun}"]
+        if all(math.isfinite(v) for v in obs.extent) and max(obs.extent) > 0:
+            parts.append(f"about {_dims(obs.extent)} m")
+            parts.append(f"{size_class(obs.extent)}-sized")
+        text = ", ".join(parts)
+        if obs.room:
+            text += f", in the {obs.room.strip().lower()}"
+        return text
+
+
+class FallbackDescriber:
+    """Ask ``primary``; when it is unavailable (endpoint down, timeout, garbage) use
+    ``fallback`` and skip ``primary`` for ``cooldown_s`` so a dead endpoint does not cost
+    one timeout per object."""
+
+    def __init__(self, primary: Describer, fallback: Describer, cooldown_s: float = 30.0) -> None:
+        self.primary = primary
+        self.fallback = fallback
+        self.cooldown_s = cooldown_s
+        self.name = f"{primary.name}|{fallback.name}"
+        self.failures = 0
+        self._skip_until = 0.0
+        self._lock = threading.Lock()
+
+    def describe(self, obs: ObjectObservation) -> str:
+        """Primary's description, or the fallback's when the primary fails."""
+        with self._lock:
+            skip = time.monotonic() < self._skip_until
+        if not skip:
+            try:
+                return self.primary.describe(obs)
+            except ModelUnavailableError as exc:
+                log.warning(
+                    "describer %s failed, using %s: %s", self.primary.name, self.fallback.name, exc
+                )
+                with self._lock:
+                    self.failures += 1
+                    self._skip_until = time.monotonic() + self.cooldown_s
+        return self.fallback.describe(obs)

@@ -1,0 +1,113 @@
+"""Offline template describer and the fallback wrapper."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from inherit_sg.errors import EndpointError, InputError
+from inherit_sg.perception.base import ObjectObservation
+from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
+from inherit_sg.perception.describer import FallbackDescriber, TemplateDescriber, size_class
+
+
+def _obs(
+    albedo: tuple[int, int, int],
+    label: str = "chair",
+    extent: tuple[float, float, float] = (0.5, 0.5, 0.9),
+    room: str | None = "Kitchen",
+) -> ObjectObservation:
+    """A crop whose object pixels are ``albedo`` under a vertical light gradient, on a
+    background of a different colour that the mask excludes."""
+    shade = np.linspace(0.4, 1.0, 24)[:, None, None]
+    obj = linear_to_srgb(srgb_to_linear(np.asarray(albedo)) * shade * np.ones((1, 20, 1)))
+    rgb = np.zeros((24, 28, 3), dtype=np.uint8)
+    rgb[:] = (40, 160, 60)  # green background
+    mask = np.zeros((24, 28), dtype=bool)
+    mask[:, 4:24] = True
+    rgb[:, 4:24] = np.clip(obj + 0.5, 0, 255).astype(np.uint8)
+    return ObjectObservation(label, rgb, mask, extent, room)
+
+
+def test_template_names_measured_colour_size_and_room() -> None:
+    text = TemplateDescriber().describe(_obs((190, 40, 40)))
+    assert text == "a red chair, about 0.5 × 0.5 × 0.9 m, medium-sized, in the kitchen"
+
+
+def test_colour_comes_from_pixels_not_label() -> None:
+    d = TemplateDescriber()
+    assert d.describe(_obs((45, 80, 185), label="Red Chair")).startswith("a blue red chair")
+    assert d.describe(_obs((225, 120, 35), label="armchair")).startswith("an orange armchair")
+
+
+def test_without_room_or_extent() -> None:
+    d = TemplateDescriber()
+    assert d.describe(_obs((235, 235, 230), room=None)).endswith("medium-sized")
+    text = d.describe(_obs((235, 235, 230), extent=(0.0, 0.0, 0.0), room=None))
+    assert text == "a white chair"
+
+
+def test_small_dimensions_keep_two_decimals() -> None:
+    text = TemplateDescriber().describe(_obs((45, 80, 185), "mug", (0.08, 0.08, 0.11)))
+    assert "about 0.08 × 0.08 × 0.1 m" in text and "small-sized" in text
+
+
+@pytest.mark.parametrize(
+    ("extent", "expected"),
+    [
+        ((0.1, 0.1, 0.11), "small"),
+        ((0.25, 0.25, 0.45), "small"),
+        ((0.5, 0.5, 0.9), "medium"),
+        ((0.45, 0.4, 0.55), "medium"),
+        ((2.0, 0.9, 0.85), "large"),
+        ((0.4, 0.4, 1.6), "large"),
+        ((0.85, 0.85, 0.9), "large"),
+    ],
+)
+def test_size_class(extent: tuple[float, float, float], expected: str) -> None:
+    assert size_class(extent) == expected
+
+
+class _Flaky:
+    name = "flaky"
+
+    def __init__(self, fail: bool) -> None:
+        self.fail = fail
+        self.calls = 0
+
+    def describe(self, obs: ObjectObservation) -> str:
+        self.calls += 1
+        if self.fail:
+            raise EndpointError("endpoint http://x is down")
+        return "a model-written description"
+
+
+def test_fallback_uses_primary_when_it_works() -> None:
+    primary = _Flaky(fail=False)
+    fb = FallbackDescriber(primary, TemplateDescriber())
+    assert fb.describe(_obs((190, 40, 40))) == "a model-written description"
+    assert fb.failures == 0 and fb.name == "flaky|offline"
+
+
+def test_fallback_switches_and_cools_down() -> None:
+    primary = _Flaky(fail=True)
+    fb = FallbackDescriber(primary, TemplateDescriber(), cooldown_s=60.0)
+    first = fb.describe(_obs((190, 40, 40)))
+    second = fb.describe(_obs((45, 80, 185)))
+    assert first.startswith("a red chair") and second.startswith("a blue chair")
+    assert primary.calls == 1 and fb.failures == 1  # no second timeout while cooling down
+    fb.cooldown_s = 0.0
+    fb._skip_until = 0.0
+    primary.fail = False
+    assert fb.describe(_obs((190, 40, 40))) == "a model-written description"
+
+
+def test_fallback_does_not_hide_bad_input() -> None:
+    class Strict:
+        name = "strict"
+
+        def describe(self, obs: ObjectObservation) -> str:
+            raise InputError("bad crop")
+
+    with pytest.raises(InputError):
+        FallbackDescriber(Strict(), TemplateDescriber()).describe(_obs((190, 40, 40)))
