@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from inherit_sg.errors import ConfigError
 
@@ -56,6 +56,21 @@ class PerceptionConfig(_Section):
     describer: str = "offline"
     model_dir: str | None = Field(None, description="local directory for DINOv3/SAM3 weights")
     noise: str = Field("clean", pattern="^(clean|noisy)$")
+    noise_seed: int = Field(0, description="seed of the dataset segmenter's noise model")
+    device: str = Field("cpu", description="torch device of the model adapters")
+    min_mask_pixels: int = Field(50, ge=1, description="smaller masks are dropped")
+    min_mask_fraction: float = Field(
+        0.0002, ge=0.0, le=1.0, description="smaller masks (share of the frame) are dropped"
+    )
+    mask_erosion_px: int = Field(1, ge=0, description="erode masks to avoid boundary pixels")
+    prompts: list[str] = Field(
+        default_factory=list, description="text prompts of SAM3 (empty = built-in indoor nouns)"
+    )
+    score_threshold: float = Field(0.4, ge=0.0, le=1.0, description="min detection score")
+    mask_threshold: float = Field(0.5, ge=0.0, le=1.0, description="mask probability cut")
+    encoder_input_size: int = Field(224, ge=16, description="crop side fed to DINOv3/ONNX")
+    onnx_path: str | None = Field(None, description="ONNX visual encoder (default: model_dir)")
+    describer_max_side: int = Field(384, ge=32, description="crops sent to the VLM are downsized")
 
 
 class LLMConfig(_Section):
@@ -88,6 +103,76 @@ class ServiceConfig(_Section):
     max_body_mb: float = Field(32.0, gt=0)
 
 
+class GeometryConfig(_Section):
+    """Geometric stream (paper §III-B): BEV occupancy, rooms, floors and keyframe gating.
+
+    Heights of the obstacle band are relative to the current floor surface.
+    """
+
+    cell_size: float = Field(0.05, gt=0.005, le=0.5, description="BEV cell edge (m)")
+    band_min: float = Field(1.2, ge=0.0, description="obstacle band bottom above the floor (m)")
+    band_max: float = Field(1.9, gt=0.0, description="obstacle band top above the floor (m)")
+    lintel_min: float = Field(2.1, gt=0.0, description="wall-above-doors band bottom (m)")
+    lintel_max: float = Field(2.4, gt=0.0, description="wall-above-doors band top (m)")
+    door_needs_lintel: bool = Field(
+        True, description="narrow passages separate rooms only under a wall (lintel)"
+    )
+    max_range: float = Field(8.0, gt=0.5, description="depth beyond this is ignored (m)")
+    depth_sigma_1m: float = Field(
+        0.01, ge=0.0, description="depth noise at 1 m, growing with range² (m; 0 = exact)"
+    )
+    depth_stride: int = Field(
+        4, ge=1, le=32, description="use every n-th depth pixel at 640 px width (scaled)"
+    )
+    angle_res_deg: float = Field(0.5, gt=0.01, le=5.0, description="2D ray spacing (deg)")
+    logodds_hit: float = Field(0.85, gt=0.0)
+    logodds_miss: float = Field(-0.4, lt=0.0)
+    logodds_min: float = Field(-2.0, lt=0.0)
+    logodds_max: float = Field(3.5, gt=0.0)
+    occupied_threshold: float = Field(0.6, gt=0.0, description="log-odds above: occupied")
+    free_threshold: float = Field(-0.6, lt=0.0, description="log-odds below: free")
+    grid_margin: float = Field(2.0, gt=0.0, description="the grid grows in steps of this (m)")
+    default_eye_height: float = Field(
+        1.4, gt=0.0, description="camera height above the floor until the floor is seen (m)"
+    )
+    edt_sigma: float = Field(0.15, ge=0.0, description="Gaussian smoothing of the EDT (m)")
+    seed_min_distance: float = Field(0.6, gt=0.0, description="watershed seed spacing (m)")
+    seed_min_clearance: float = Field(0.35, gt=0.0, description="smallest seed EDT (m)")
+    door_max_width: float = Field(1.25, gt=0.0, description="wider passages join rooms (m)")
+    plateau_ratio: float = Field(0.85, gt=0.0, le=1.0, description="merge flat EDT ridges")
+    min_room_area: float = Field(1.5, gt=0.0, description="smaller regions are pruned (m²)")
+    segment_every: int = Field(15, ge=1, description="re-segment rooms every n frames")
+    room_hysteresis: int = Field(2, ge=1, description="votes before a cell changes room")
+    room_enter_frames: int = Field(3, ge=1, description="frames in a room before entering")
+    floor_min_height: float = Field(1.8, gt=0.0, description="camera rise/fall of a storey (m)")
+    floor_settle_tol: float = Field(0.3, gt=0.0, description="height jitter on one floor (m)")
+    floor_stable_frames: int = Field(4, ge=1, description="steady frames before a switch")
+    storey_height: float = Field(3.0, gt=0.0, description="assumed height of the top floor (m)")
+    keyframe_similarity: float = Field(
+        0.9, gt=0.0, le=1.0, description="cosine to the last keyframe below this: keyframe"
+    )
+    keyframe_translation: float = Field(1.0, gt=0.0, description="pose gate: metres moved")
+    keyframe_rotation_deg: float = Field(30.0, gt=0.0, description="pose gate: degrees turned")
+    keyframe_min_gap: int = Field(2, ge=0, description="frames between two keyframes")
+    queue_capacity: int = Field(64, ge=1, description="pending keyframes for the semantic stream")
+    refine_line_tolerance: float = Field(
+        0.25, gt=0.0, description="boundary jitter straightened by line regularisation (m)"
+    )
+    refine_min_segment: float = Field(0.3, gt=0.0, description="shortest straight wall run (m)")
+    viewpoint_rays: int = Field(90, ge=4, description="rays per keyframe for best views")
+    bev_scale: int = Field(3, ge=1, le=16, description="pixels per cell in the BEV picture")
+
+    @model_validator(mode="after")
+    def _bands_ordered(self) -> GeometryConfig:
+        if not self.band_min < self.band_max <= self.lintel_min < self.lintel_max:
+            raise ValueError(
+                "geometry bands must satisfy band_min < band_max <= lintel_min < lintel_max"
+            )
+        if self.free_threshold >= self.occupied_threshold:
+            raise ValueError("geometry free_threshold must be below occupied_threshold")
+        return self
+
+
 class Config(BaseModel):
     """Whole configuration."""
 
@@ -99,6 +184,7 @@ class Config(BaseModel):
     llm: LLMConfig = Field(default_factory=lambda: LLMConfig())
     retrieval: RetrievalConfig = Field(default_factory=lambda: RetrievalConfig())
     service: ServiceConfig = Field(default_factory=lambda: ServiceConfig())
+    geometry: GeometryConfig = Field(default_factory=lambda: GeometryConfig())
 
 
 def _parse_scalar(text: str) -> Any:
