@@ -12,6 +12,7 @@ from typing import Annotated
 import typer
 
 from inherit_sg import __version__
+from inherit_sg.cli import parse_cmd, sim
 from inherit_sg.cli.output import handle_errors, print_json, print_table
 
 app = typer.Typer(
@@ -21,6 +22,9 @@ app = typer.Typer(
     add_completion=False,
     pretty_exceptions_enable=False,
 )
+
+app.add_typer(sim.app, name="sim")
+app.command("parse")(parse_cmd.parse)
 
 MapOption = Annotated[Path, typer.Option("--map", "-m", help="Map directory.")]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON.")]
