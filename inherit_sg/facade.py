@@ -57,8 +57,25 @@ class MapService:
 
     # ------------------------------------------------------------ reads
     def stats(self) -> dict[str, Any]:
-        """Counts per table, sessions and bytes on disk."""
-        return self.store.stats().to_dict()
+        """Counts per table, sessions and bytes on disk, with the map's identity."""
+        from inherit_sg.exchange.records import session_to_record
+
+        stats = self.store.stats().to_dict()
+        info = self.store.info
+        return {
+            "path": str(self.store.path),
+            "schema_version": info.schema_version,
+            "created": info.created,
+            "text_embedder": info.text_embedder,
+            "visual_encoder": info.visual_encoder,
+            **stats,
+            "sessions": [session_to_record(s) for s in self.store.sessions()],
+            "bytes": {
+                "graph": stats["bytes_graph"],
+                "keyframes": stats["bytes_lance"],
+                "total": stats["bytes_total"],
+            },
+        }
 
     def cypher(
         self, query: str, params: dict[str, Any] | None = None, *, max_rows: int | None = 1000
@@ -138,8 +155,22 @@ def import_into_new_map(
         with MapStore.create(map_dir, cfg) as store:
             store.write_changes(graph)
         return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
+    if fmt == "scene":
+        from ingest.synthetic.scene import Scene
+        from inherit_sg.embed import get_text_embedder
+        from inherit_sg.exchange.scene_truth import scene_to_graph
+        from inherit_sg.mapping.node_text import embed_nodes
+
+        graph = scene_to_graph(Scene.load(src))
+        embedder = get_text_embedder(
+            cfg.embedder.model, batch_size=cfg.embedder.batch_size, device=cfg.embedder.device
+        )
+        embed_nodes(graph, embedder)
+        with MapStore.create(map_dir, cfg) as store:
+            store.write_changes(graph)
+        return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
     if fmt != "json":
-        raise InputError(f"unknown import format {fmt!r}: use json or spark-dsg")
+        raise InputError(f"unknown import format {fmt!r}: use json, spark-dsg or scene")
     try:
         doc = json.loads(src.read_text(encoding="utf-8"))
     except json.JSONDecodeError as exc:

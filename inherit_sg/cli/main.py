@@ -122,14 +122,21 @@ def import_map(
     source: Annotated[Path, typer.Argument(help="File to import.")],
     map_dir: MapOption,
     fmt: Annotated[
-        str, typer.Option("--format", "-f", help="json (INHerit-SG export) or spark-dsg.")
+        str,
+        typer.Option(
+            "--format",
+            "-f",
+            help="json (INHerit-SG export), spark-dsg (Hydra JSON) or scene "
+            "(a dataset's ground-truth scene.json as an oracle map).",
+        ),
     ] = "json",
     label_space: Annotated[
         Path | None, typer.Option(help="spark-dsg: JSON or CSV naming semantic label ids.")
     ] = None,
     as_json: JsonOption = False,
 ) -> None:
-    """Create a map from an INHerit-SG JSON export or a Spark-DSG (Hydra) JSON graph."""
+    """Create a map from an INHerit-SG JSON export, a Spark-DSG (Hydra) JSON graph or a
+    ground-truth scene.json (oracle map for evaluation)."""
     from inherit_sg.facade import import_into_new_map
 
     summary = import_into_new_map(source, map_dir, fmt=fmt, label_space=label_space)

@@ -1,0 +1,128 @@
+"""The semantic stream's per-keyframe work (paper §III-B "Semantic Stream"): segment,
+back-project, encode, associate and fuse, then describe the nodes that are new.
+
+Backends are injected (see :mod:`inherit_sg.perception.registry`), so the same code runs
+with the offline defaults, SAM3/DINOv3 adapters or a VLM describer.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from inherit_sg.mapping.backproject import Observation, observe
+from inherit_sg.mapping.object_map import IntegrationResult, ObjectMap
+from inherit_sg.model import Frame
+from inherit_sg.perception.base import (
+    Describer,
+    Detection,
+    ObjectObservation,
+    Segmenter,
+    VisualEncoder,
+)
+
+# Building parts the segmenter may report that are not objects of the map.
+BACKGROUND_LABELS = frozenset({"wall", "floor", "ceiling", "background", "unlabeled", "void"})
+
+
+class LabelEmbedder(Protocol):
+    """Anything that embeds short texts into unit vectors (the text embedder)."""
+
+    def embed(self, texts: list[str]) -> np.ndarray:
+        """(n, dim) unit vectors."""
+        ...
+
+
+class LabelSimilarity:
+    """Cosine similarity of label embeddings, cached per label."""
+
+    def __init__(self, embedder: LabelEmbedder) -> None:
+        self._embedder = embedder
+        self._vectors: dict[str, np.ndarray] = {}
+
+    def _vec(self, label: str) -> np.ndarray:
+        if label not in self._vectors:
+            self._vectors[label] = self._embedder.embed([label])[0]
+        return self._vectors[label]
+
+    def __call__(self, a: str, b: str) -> float:
+        return 1.0 if a == b else float(self._vec(a) @ self._vec(b))
+
+
+@dataclass
+class KeyframeStats:
+    """What the semantic stream did with one keyframe."""
+
+    detections: int = 0
+    observations: int = 0
+    created: int = 0
+    matched: int = 0
+    by_stage: Counter[int] = field(default_factory=Counter)
+
+
+@dataclass
+class SemanticStream:
+    """Turns keyframes into fused object nodes."""
+
+    segmenter: Segmenter
+    encoder: VisualEncoder
+    describer: Describer
+    objects: ObjectMap
+    colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
+    min_pixels: int = 150
+
+    def observe_keyframe(self, frame: Frame) -> tuple[list[Observation], list[Detection]]:
+        """Detections of ``frame`` turned into 3D observations with visual features."""
+        kept: list[Detection] = []
+        observations: list[Observation] = []
+        for det in self.segmenter.segment(frame):
+            if det.label in BACKGROUND_LABELS or det.area < self.min_pixels:
+                continue
+            obs = observe(frame, det.mask, det.label, det.score)
+            if obs is not None:
+                observations.append(obs)
+                kept.append(det)
+        if observations:
+            feats = self.encoder.encode(frame.rgb, [d.mask for d in kept])
+            for obs, feat in zip(observations, feats, strict=True):
+                obs.visual_feature = feat
+        return observations, kept
+
+    def process(
+        self, frame: Frame, floor_id: str | None
+    ) -> tuple[IntegrationResult, KeyframeStats]:
+        """Integrate one keyframe; new nodes get a description."""
+        observations, detections = self.observe_keyframe(frame)
+        result = self.objects.integrate(observations, floor_id)
+        stats = KeyframeStats(
+            detections=len(detections),
+            observations=len(observations),
+            created=len(result.created),
+            matched=len(result.matched),
+            by_stage=Counter(m.stage for m in result.matched),
+        )
+        index_of = {m.node_id: m.observation for m in result.matched}
+        created = iter(result.created)
+        for i, (obs, det) in enumerate(zip(observations, detections, strict=True)):
+            node_id = next((nid for nid, oi in index_of.items() if oi == i), None)
+            if node_id is None:
+                node_id = next(created)
+                self._describe(node_id, frame, det, obs)
+            self._vote_colour(node_id, frame, det)
+        return result, stats
+
+    def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
+        extent = tuple(float(v) for v in obs.bbox.size)
+        crop = ObjectObservation.from_frame(frame, det, (extent[0], extent[1], extent[2]))
+        self.objects.objects[node_id].node.description = self.describer.describe(crop)
+
+    def _vote_colour(self, node_id: str, frame: Frame, det: Detection) -> None:
+        from inherit_sg.perception.colour_names import colour_name
+
+        votes = self.colour_votes.setdefault(node_id, Counter())
+        votes[colour_name(frame.rgb, det.mask)] += 1
+        node = self.objects.objects[node_id].node
+        node.attributes["colour"] = votes.most_common(1)[0][0]
