@@ -18,7 +18,7 @@ Line layouts used here (first token, then fields by position):
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -89,6 +89,7 @@ class HouseFile:
     scene: Scene
     boxes: dict[str, OrientedBox]  # object id -> oriented box
     region_heights: dict[str, float]  # room id -> ceiling height above its floor
+    region_floor_z: dict[str, float] = field(default_factory=dict)  # room id -> floor height
 
 
 def _floats(parts: list[str], start: int, n: int) -> np.ndarray:
@@ -171,6 +172,7 @@ def parse_house(path: str | Path) -> HouseFile:
             polygons.setdefault(region, [[float(v[0]), float(v[1])] for v in verts])
     counts: dict[str, int] = defaultdict(int)
     heights: dict[str, float] = {}
+    floor_z: dict[str, float] = {}
     for index in sorted(regions):
         level, code, lo, hi, height = regions[index]
         rtype = REGION_TYPES.get(code, "room")
@@ -189,6 +191,7 @@ def parse_house(path: str | Path) -> HouseFile:
             )
         )
         heights[room_id] = height if height > 0 else float(hi[2] - lo[2])
+        floor_z[room_id] = float(lo[2])
 
     boxes: dict[str, OrientedBox] = {}
     for index, region, category, center, a0, a1, radii in objects:
@@ -216,4 +219,4 @@ def parse_house(path: str | Path) -> HouseFile:
             )
         )
         boxes[obj_id] = box
-    return HouseFile(scene=scene, boxes=boxes, region_heights=heights)
+    return HouseFile(scene=scene, boxes=boxes, region_heights=heights, region_floor_z=floor_z)

@@ -74,6 +74,7 @@ BUILTIN_FORMATS: tuple[ReaderSpec, ...] = (
     ),
     ReaderSpec("tum", "ingest.readers.tum:TumReader", ("rgb.txt", "depth.txt")),
     ReaderSpec("hm3d", "ingest.readers.hm3d:Hm3dReader", ("rgb/", "depth/", "pose/")),
+    ReaderSpec("mp3d", "ingest.readers.mp3d:Mp3dReader", ("*.house",)),
 )
 
 

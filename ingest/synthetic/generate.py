@@ -1,6 +1,9 @@
 """Top-level pipeline: generate a house, walk it, render every pose and write an isg
 dataset folder (intrinsics, poses, frames, ground-truth ``scene.json``).
 
+:func:`write_walk` is the world-agnostic part (any mesh, lights, scene and walk: MP3D
+houses use it too); :func:`render_frame` is the per-frame render + noise step.
+
 Everything is deterministic by seed: the same seed gives a byte-identical
 ``scene.json`` and identical frames. Rendering runs in worker processes when more than
 one core is available; frames are written in order by the calling process.
@@ -33,7 +36,7 @@ from ingest.synthetic.noise import (
 )
 from ingest.synthetic.placement import Placed
 from ingest.synthetic.plan import HousePlan
-from ingest.synthetic.render import Renderer
+from ingest.synthetic.render import Renderer, RoomLights
 from ingest.synthetic.scene import Scene
 from ingest.synthetic.trajectory import Trajectory, plan_trajectory
 from ingest.synthetic.world import WorldMesh, build_world
@@ -112,18 +115,30 @@ def make_intrinsics(width: int = 640, height: int = 480) -> Intrinsics:
 _RENDERER: Renderer | None = None
 
 
-def _init_worker(world: WorldMesh, plan: HousePlan, intrinsics: Intrinsics, shadows: bool) -> None:
+def _init_worker(
+    world: WorldMesh, lights: HousePlan | RoomLights, intrinsics: Intrinsics, shadows: bool
+) -> None:
     global _RENDERER
-    _RENDERER = Renderer(world, plan, intrinsics, shadows=shadows)
+    _RENDERER = Renderer(world, lights, intrinsics, shadows=shadows)
 
 
 FrameResult = tuple[int, np.ndarray, np.ndarray, np.ndarray, dict[int, str], dict[int, int]]
 
 
-def _render_frame(job: tuple[int, Pose, int, NoiseConfig, dict[int, str]]) -> FrameResult:
-    index, pose, seed, config, labels = job
-    assert _RENDERER is not None
-    out = _RENDERER.render(pose)
+def render_frame(
+    renderer: Renderer,
+    index: int,
+    pose: Pose,
+    seed: int,
+    config: NoiseConfig,
+    labels: dict[int, str],
+) -> FrameResult:
+    """Render walk frame ``index`` and pass it through the perception noise model.
+
+    Returns (index, rgb, depth, per-frame renumbered instance ids, their labels, true
+    instance id -> visible pixels). Deterministic by (``seed``, ``index``).
+    """
+    out = renderer.render(pose)
     rng = np.random.default_rng([seed, FRAME_STREAM, index])
     true_ids, pixels = np.unique(out.instances, return_counts=True)
     visible = {int(k): int(n) for k, n in zip(true_ids, pixels, strict=True) if k != 0}
@@ -134,19 +149,29 @@ def _render_frame(job: tuple[int, Pose, int, NoiseConfig, dict[int, str]]) -> Fr
     return index, out.rgb, depth, ids16, frame_labels, visible
 
 
+def _render_job(job: tuple[int, Pose, int, NoiseConfig, dict[int, str]]) -> FrameResult:
+    assert _RENDERER is not None
+    return render_frame(_RENDERER, *job)
+
+
 def _frames(
-    house: House, intrinsics: Intrinsics, jobs: list[Any], workers: int, shadows: bool
+    world: WorldMesh,
+    lights: HousePlan | RoomLights,
+    intrinsics: Intrinsics,
+    jobs: list[Any],
+    workers: int,
+    shadows: bool,
 ) -> Iterator[FrameResult]:
     if workers <= 1:
-        _init_worker(house.world, house.plan, intrinsics, shadows)
-        yield from map(_render_frame, jobs)
+        _init_worker(world, lights, intrinsics, shadows)
+        yield from map(_render_job, jobs)
         return
     with ProcessPoolExecutor(
         max_workers=workers,
         initializer=_init_worker,
-        initargs=(house.world, house.plan, intrinsics, shadows),
+        initargs=(world, lights, intrinsics, shadows),
     ) as pool:
-        yield from pool.map(_render_frame, jobs, chunksize=4)
+        yield from pool.map(_render_job, jobs, chunksize=4)
 
 
 def write_dataset(
@@ -169,32 +194,71 @@ def write_dataset(
     (default: one per core, at most 4); ``max_frames`` keeps only the start of the walk
     (quick demos); ``shadows`` casts shadow rays towards each room's light (slower).
     """
-    config = noise_config(noise)
     seed = house.seed if seed is None else seed
-    intrinsics = make_intrinsics(width, height)
+    return write_walk(
+        house.world,
+        house.plan,
+        house.scene,
+        house.trajectory(seed),
+        out_dir,
+        seed=seed,
+        noise=noise,
+        width=width,
+        height=height,
+        progress=progress,
+        workers=workers,
+        max_frames=max_frames,
+        shadows=shadows,
+    )
+
+
+def write_walk(
+    world: WorldMesh,
+    lights: HousePlan | RoomLights,
+    scene: Scene,
+    traj: Trajectory,
+    out_dir: str | Path,
+    *,
+    seed: int,
+    noise: str = "clean",
+    width: int = 640,
+    height: int = 480,
+    progress: Progress | None = None,
+    workers: int | None = None,
+    max_frames: int | None = None,
+    shadows: bool = False,
+    intrinsics: Intrinsics | None = None,
+) -> DatasetSummary:
+    """Render the walk ``traj`` through ``world`` and write an isg folder: frames, poses,
+    ``scene.json`` and the ground-truth extras (visibility, walk truth, queries).
+
+    Shared by generated houses and MP3D houses; the arguments after ``out_dir`` are as in
+    :func:`write_dataset` (``intrinsics`` defaults to :func:`make_intrinsics`).
+    """
+    config = noise_config(noise)
+    intrinsics = make_intrinsics(width, height) if intrinsics is None else intrinsics
     start = time.perf_counter()
     out = Path(out_dir)
-    traj = house.trajectory(seed)
     poses = traj.poses[:max_frames] if max_frames is not None else traj.poses
     drift = PoseDrift(config, np.random.default_rng([seed, DRIFT_STREAM]))
     written_poses = [drift.apply(p) for p in poses]
-    labels = {o.instance_id: o.label for o in house.objects}
+    labels = {o.instance_id: o.label for o in scene.objects}
     jobs = [(i, pose, seed, config, labels) for i, pose in enumerate(poses)]
     n_workers = workers if workers is not None else min(4, os.cpu_count() or 1)
-    seen = VisibilityLog(width * height)
+    seen = VisibilityLog(intrinsics.width * intrinsics.height)
     with IsgWriter(out, intrinsics) as writer:
-        house.scene.save(out)
+        scene.save(out)
         for index, rgb, depth, ids, frame_labels, visible in _frames(
-            house, intrinsics, jobs, n_workers, shadows
+            world, lights, intrinsics, jobs, n_workers, shadows
         ):
             writer.write(f"{index:06d}", rgb, depth, written_poses[index], ids, frame_labels)
             seen.add(visible)
             if progress is not None:
                 progress(index + 1, len(jobs))
-    instance_to_object = {o.instance_id: o.id for o in house.scene.objects}
+    instance_to_object = {o.instance_id: o.id for o in scene.objects}
     write_ground_truth_extras(
         out,
-        house.scene,
+        scene,
         seed,
         visibility=seen.by_object(instance_to_object),
         frame_floors=list(traj.floors[: len(jobs)]),
@@ -202,12 +266,12 @@ def write_dataset(
     )
     return DatasetSummary(
         out_dir=str(out),
-        floors=len(house.plan.floors),
-        rooms=len(house.scene.rooms),
-        objects=len(house.scene.objects),
+        floors=len(scene.floors),
+        rooms=len(scene.rooms),
+        objects=len(scene.objects),
         frames=len(jobs),
         seconds=round(time.perf_counter() - start, 3),
         noise=noise,
-        width=width,
-        height=height,
+        width=intrinsics.width,
+        height=intrinsics.height,
     )

@@ -53,23 +53,24 @@ def _encode_srgb(linear: np.ndarray) -> np.ndarray:
     return np.asarray(_SRGB[idx])
 
 
-class _Lights:
-    """One ceiling light per room, looked up from a plan raster per storey (world frame)."""
+@dataclass
+class RoomLights:
+    """One ceiling light per room, looked up from a room raster per storey (world frame).
 
-    def __init__(self, plan: HousePlan) -> None:
-        self.grid = Grid(plan.footprint, 0.1)
-        self.floor_z = np.array([f.z for f in plan.floors])
-        rooms = plan.all_rooms
-        self.outside = len(rooms)
-        self.pos = np.zeros((len(rooms) + 1, 3))
-        self.pos[-1] = (plan.footprint.cx, plan.footprint.cy, 1e3)
-        self.raster = np.full((len(plan.floors), *self.grid.shape), self.outside, dtype=np.int32)
-        for k, room in enumerate(rooms):
-            floor = plan.floors[room.floor]
-            self.pos[k] = (room.rect.cx, room.rect.cy, floor.z + floor.height - 0.3)
-            cells = np.zeros(self.grid.shape, dtype=bool)
-            self.grid.fill(cells, room.rect)
-            self.raster[room.floor][cells] = k
+    ``raster[floor, i, j]`` is the index into ``pos`` of the room covering cell (i, j) of
+    ``grid`` on that storey; the last row of ``pos`` is the weak "outside" light. A point
+    belongs to the highest storey whose floor height ``floor_z`` it is above.
+    """
+
+    grid: Grid
+    floor_z: np.ndarray  # (floors,) storey floor heights, ascending
+    raster: np.ndarray  # (floors, rows, cols) int32
+    pos: np.ndarray  # (rooms + 1, 3) light positions, last = outside
+
+    @property
+    def outside(self) -> int:
+        """Index of the outside light."""
+        return len(self.pos) - 1
 
     def room_index(self, points: np.ndarray) -> np.ndarray:
         """Index into ``pos`` of the room each point lies in (``outside`` if none)."""
@@ -86,13 +87,33 @@ class _Lights:
         return np.where(inside, self.raster[floor, i, j], self.outside)
 
 
+def plan_lights(plan: HousePlan) -> RoomLights:
+    """The lights of a generated house: one per room, 0.3 m under its storey's ceiling."""
+    grid = Grid(plan.footprint, 0.1)
+    rooms = plan.all_rooms
+    pos = np.zeros((len(rooms) + 1, 3))
+    pos[-1] = (plan.footprint.cx, plan.footprint.cy, 1e3)
+    raster = np.full((len(plan.floors), *grid.shape), len(rooms), dtype=np.int32)
+    for k, room in enumerate(rooms):
+        floor = plan.floors[room.floor]
+        pos[k] = (room.rect.cx, room.rect.cy, floor.z + floor.height - 0.3)
+        cells = np.zeros(grid.shape, dtype=bool)
+        grid.fill(cells, room.rect)
+        raster[room.floor][cells] = k
+    return RoomLights(grid, np.array([f.z for f in plan.floors]), raster, pos)
+
+
 class Renderer:
-    """Renders RGB, depth and instance images of a world for camera poses."""
+    """Renders RGB, depth and instance images of a world for camera poses.
+
+    ``plan`` gives the room lights: a generated house's plan, or :class:`RoomLights`
+    built for any other world (e.g. an MP3D house).
+    """
 
     def __init__(
         self,
         world: WorldMesh,
-        plan: HousePlan,
+        plan: HousePlan | RoomLights,
         intrinsics: Intrinsics,
         *,
         max_range: float = 10.0,
@@ -110,7 +131,7 @@ class Renderer:
         normals = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
         lengths = np.linalg.norm(normals, axis=1, keepdims=True)
         self._normals = (normals / np.maximum(lengths, 1e-12)).astype(np.float32)
-        self._lights = _Lights(plan)
+        self._lights = plan if isinstance(plan, RoomLights) else plan_lights(plan)
         self._light_pos = (self._lights.pos - self._origin).astype(np.float32)
         self._sky_dir = SKY_DIR.astype(np.float32)
         self._origin32 = self._origin.astype(np.float32)

@@ -1,4 +1,5 @@
-"""``inherit-sg sim``: synthetic multi-floor houses rendered into isg datasets.
+"""``inherit-sg sim``: synthetic multi-floor houses (``generate``) and Matterport3D
+``.house`` layouts (``render-house``) walked and rendered into isg datasets.
 
 Heavy imports (trimesh, embreex, scipy) happen inside the commands so that
 ``inherit-sg --help`` stays fast.
@@ -7,18 +8,24 @@ Heavy imports (trimesh, embreex, scipy) happen inside the commands so that
 from __future__ import annotations
 
 import shutil
+from collections.abc import Callable
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from inherit_sg.cli.output import handle_errors, print_json, print_table
 from inherit_sg.errors import InputError
 
+if TYPE_CHECKING:
+    from ingest.synthetic.generate import DatasetSummary
+
+Progress = Callable[[int, int], None]
+
 app = typer.Typer(
     name="sim",
-    help="Synthetic multi-floor houses: generate, walk and render them into isg datasets.",
+    help="Simulated walks: synthetic or Matterport3D houses rendered into isg datasets.",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
@@ -27,11 +34,21 @@ app = typer.Typer(
 
 @app.callback()
 def _sim() -> None:
-    """Synthetic multi-floor houses."""
+    """Synthetic multi-floor houses and Matterport3D house renders."""
 
 
-# What `generate` writes into the output folder; --force replaces only these.
-DATASET_ENTRIES = ("frames", "intrinsics.json", "poses.txt", "scene.json", "instances.json")
+# What `generate` and `render-house` write into the output folder; --force replaces only these.
+DATASET_ENTRIES = (
+    "frames",
+    "intrinsics.json",
+    "poses.txt",
+    "scene.json",
+    "instances.json",
+    "visibility.json",
+    "walk.json",
+    "queries.jsonl",
+    "conversations.jsonl",
+)
 
 
 class NoiseLevel(StrEnum):
@@ -82,26 +99,13 @@ def generate(
     as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
 ) -> None:
     """Generate a house, walk through every room and write an isg dataset folder."""
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
-
     from ingest.synthetic.generate import generate_house, write_dataset
 
     _prepare_out(out, force)
     house = generate_house(seed, floors, rooms_per_floor)
-    columns = (
-        "[progress.description]{task.description}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeRemainingColumn(),
-    )
-    with Progress(*columns, console=Console(stderr=True), transient=as_json) as bar:
-        task = bar.add_task("rendering frames", total=None)
-
-        def progress(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
-
-        summary = write_dataset(
+    summary = _with_progress(
+        as_json,
+        lambda progress: write_dataset(
             house,
             out,
             noise=noise.value,
@@ -112,7 +116,84 @@ def generate(
             workers=workers,
             max_frames=max_frames,
             shadows=shadows,
-        )
+        ),
+    )
+    _report(summary, as_json)
+
+
+@app.command("render-house")
+@handle_errors
+def render_house(
+    house_file: Annotated[
+        Path, typer.Argument(help="Matterport3D .house file (region and object annotations).")
+    ],
+    out: Annotated[Path, typer.Option("--out", "-o", help="Dataset folder to write.")],
+    seed: Annotated[int, typer.Option(min=0, help="Random seed of the walk and the noise.")] = 0,
+    noise: Annotated[NoiseLevel, typer.Option(help="Perception noise level.")] = NoiseLevel.clean,
+    width: Annotated[int, typer.Option(min=16, max=4096, help="Image width.")] = 640,
+    height: Annotated[int, typer.Option(min=16, max=4096, help="Image height.")] = 480,
+    workers: Annotated[
+        int | None, typer.Option(min=1, help="Render processes (default: one per core).")
+    ] = None,
+    max_frames: Annotated[
+        int | None, typer.Option(min=1, help="Keep only the first N frames of the walk.")
+    ] = None,
+    shadows: Annotated[
+        bool, typer.Option("--shadows", help="Cast shadows from the room lights (slower).")
+    ] = False,
+    force: Annotated[bool, typer.Option("--force", help="Overwrite an existing dataset.")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+) -> None:
+    """Render a Matterport3D house into an isg dataset with ground truth and queries.
+
+    Regions become rooms, object boxes objects; coordinates stay the file's own (z-up metres).
+    """
+    from ingest.mp3d_dataset import load_house_world, write_house_dataset
+
+    if not house_file.is_file():
+        raise InputError(f"house file not found: {house_file}")
+    world = load_house_world(house_file)
+    _prepare_out(out, force)
+    summary = _with_progress(
+        as_json,
+        lambda progress: write_house_dataset(
+            world,
+            out,
+            seed=seed,
+            noise=noise.value,
+            width=width,
+            height=height,
+            progress=progress,
+            workers=workers,
+            max_frames=max_frames,
+            shadows=shadows,
+        ),
+    )
+    _report(summary, as_json)
+
+
+def _with_progress(as_json: bool, work: Callable[[Progress], DatasetSummary]) -> DatasetSummary:
+    """Run ``work`` with a frame progress bar on stderr (cleared when printing JSON)."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, TimeRemainingColumn
+    from rich.progress import Progress as Bar
+
+    columns = (
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeRemainingColumn(),
+    )
+    with Bar(*columns, console=Console(stderr=True), transient=as_json) as bar:
+        task = bar.add_task("rendering frames", total=None)
+
+        def progress(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total)
+
+        return work(progress)
+
+
+def _report(summary: DatasetSummary, as_json: bool) -> None:
     if as_json:
         print_json(summary.to_dict())
         return

@@ -77,12 +77,12 @@ def test_adding_a_format_is_one_registration(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr(readers, "_REGISTRY", dict(readers._REGISTRY))
-    register_format(ReaderSpec("house", "ingest.isg:IsgReader", ("*.house",)))
-    house = tmp_path / "scene.house"
+    register_format(ReaderSpec("house", "ingest.isg:IsgReader", ("*.layout",)))
+    house = tmp_path / "scene.layout"
     house.write_text("ASCII 1.1\n")
     assert detect_format(house) == "house"  # a single file pattern also matches the file itself
-    assert detect_format(_touch(tmp_path / "folder", ["a.house"])) == "house"
+    assert detect_format(_touch(tmp_path / "folder", ["a.layout"])) == "house"
     with pytest.raises(ValueError, match="already registered"):
-        register_format(ReaderSpec("house", "x:y", ("*.house",)))
+        register_format(ReaderSpec("house", "x:y", ("*.layout",)))
     with pytest.raises(ValueError, match="reserved"):
         register_format(ReaderSpec("auto", "x:y", ("*",)))
