@@ -111,8 +111,8 @@ class MapService:
         }
         Path(out).write_text(json.dumps(doc), encoding="utf-8")
         return {
-            "nodes": len(doc["nodes"]),
-            "edges": len(doc["edges"]),
+            "nodes": len(graph),
+            "edges": sum(1 for _ in graph.edges()),
             "keyframes": len(keyframe_ids),
         }
 
@@ -196,3 +196,71 @@ def import_into_new_map(
             store.add_keyframes(keyframes)
         store.write_changes(graph)
     return {"nodes": len(graph), "edges": len(doc.get("edges", [])), "keyframes": len(keyframes)}
+
+
+def build_map(
+    dataset: str | Path,
+    map_dir: str | Path,
+    *,
+    fmt: str = "auto",
+    session_name: str | None = None,
+    config: Config | None = None,
+    max_frames: int | None = None,
+    progress: Any = None,
+    total: Any = None,
+) -> dict[str, Any]:
+    """Map a dataset into ``map_dir`` as one new session (the map is created when absent).
+
+    ``progress`` receives :class:`~inherit_sg.mapping.orchestrator.BuildProgress`
+    counters; ``total`` is called once with the number of frames to expect.
+    """
+    import itertools
+    import time
+
+    from ingest.readers import open_dataset
+    from inherit_sg.mapping.orchestrator import Mapper
+    from inherit_sg.model import Session
+
+    cfg = config or load_config()
+    source = open_dataset(dataset, fmt)
+    n_frames = len(source) if max_frames is None else min(len(source), max_frames)
+    if total is not None:
+        total(n_frames)
+    path = Path(map_dir)
+    store = (
+        MapStore.open(path, write=True, config=cfg)
+        if (path / "map.json").is_file()
+        else MapStore.create(path, cfg)
+    )
+    with store:
+        index = len(store.sessions()) + 1
+        name = session_name or f"session-{index}"
+        if any(s.name == name for s in store.sessions()):
+            raise InputError(f"map {path} already has a session named {name!r}")
+        session = Session(
+            id=f"session:{index}", name=name, started=time.time(), dataset=str(dataset)
+        )
+        store.upsert_session(session)
+        mapper = Mapper(store, cfg, session, progress=progress)
+        summary = mapper.run(itertools.islice(iter(source), n_frames))
+        pictures = write_bev_pictures(mapper, path)
+    out = summary.to_dict()
+    out["map"] = str(path)
+    out["bev"] = [str(p) for p in pictures]
+    return out
+
+
+def write_bev_pictures(mapper: Any, map_dir: Path) -> list[Path]:
+    """One BEV PNG per floor under ``<map>/bev/``."""
+    out_dir = map_dir / "bev"
+    out_dir.mkdir(exist_ok=True)
+    written = []
+    for floor in mapper.geometry.floors():
+        level = floor.level
+        try:
+            written.append(
+                mapper.geometry.save_bev(out_dir / f"floor_{level}.png", floor.id, refined=True)
+            )
+        except ValueError:
+            continue
+    return written

@@ -67,17 +67,17 @@ def scene_to_graph(scene: Scene) -> SceneGraph:
     floor_z = {f.index: f.z for f in scene.floors}
     for r in scene.rooms:
         centre = np.asarray(r.polygon, dtype=float).mean(axis=0)
-        node = RoomNode(
+        room = RoomNode(
             make_id(Layer.ROOM, r.id),
             r.type,
             floor_id=floor_ids.get(r.floor),
             position=(float(centre[0]), float(centre[1]), floor_z.get(r.floor, 0.0)),
             mask=_mask(r.polygon),
         )
-        graph.add_or_update(node)
-        if node.floor_id:
-            graph.add_edge(Edge.make(EdgeKind.HAS_ROOM, node.floor_id, node.id))
-        room_ids[r.id] = node.id
+        graph.add_or_update(room)
+        if room.floor_id:
+            graph.add_edge(Edge.make(EdgeKind.HAS_ROOM, room.floor_id, room.id))
+        room_ids[r.id] = room.id
     for d in scene.doors:
         if len(d.rooms) == 2 and all(r in room_ids for r in d.rooms):
             a, b = (room_ids[r] for r in d.rooms)
@@ -86,12 +86,14 @@ def scene_to_graph(scene: Scene) -> SceneGraph:
     area_of = {oid: a.id for a in scene.areas for oid in a.object_ids}
     area_ids: dict[str, str] = {}
     fallback_area: dict[str, str] = {}
-    for a in scene.areas:
-        if a.room_id in room_ids:
-            node = AreaNode(make_id(Layer.AREA, a.id), a.label, room_id=room_ids[a.room_id])
-            graph.add_or_update(node)
-            graph.add_edge(Edge.make(EdgeKind.HAS_AREA, room_ids[a.room_id], node.id))
-            area_ids[a.id] = node.id
+    for gt_area in scene.areas:
+        if gt_area.room_id in room_ids:
+            area = AreaNode(
+                make_id(Layer.AREA, gt_area.id), gt_area.label, room_id=room_ids[gt_area.room_id]
+            )
+            graph.add_or_update(area)
+            graph.add_edge(Edge.make(EdgeKind.HAS_AREA, room_ids[gt_area.room_id], area.id))
+            area_ids[gt_area.id] = area.id
     room_label = {room_ids[r.id]: r.type for r in scene.rooms}
     members: dict[str, list[ObjectNode]] = defaultdict(list)
     for o in scene.objects:
@@ -101,12 +103,12 @@ def scene_to_graph(scene: Scene) -> SceneGraph:
         area_id = area_ids.get(area_of.get(o.id, "")) or area_ids.get(o.area_id or "")
         if area_id is None:
             if room_id not in fallback_area:
-                node = AreaNode(
+                rest = AreaNode(
                     make_id(Layer.AREA, f"{o.room_id}-other"), "room area", room_id=room_id
                 )
-                graph.add_or_update(node)
-                graph.add_edge(Edge.make(EdgeKind.HAS_AREA, room_id, node.id))
-                fallback_area[room_id] = node.id
+                graph.add_or_update(rest)
+                graph.add_edge(Edge.make(EdgeKind.HAS_AREA, room_id, rest.id))
+                fallback_area[room_id] = rest.id
             area_id = fallback_area[room_id]
         box = BBox3D(tuple(o.bbox_min), tuple(o.bbox_max))
         obj = ObjectNode(
@@ -126,21 +128,30 @@ def scene_to_graph(scene: Scene) -> SceneGraph:
         graph.add_edge(Edge.make(EdgeKind.HAS_OBJECT, area_id, obj.id))
         members[area_id].append(obj)
     for area_id, objs in members.items():
-        area = graph.get(area_id)
+        area_node = graph.get(area_id)
+        assert isinstance(area_node, AreaNode)
         pts = np.array([o.position for o in objs])
-        area.position = tuple(float(v) for v in pts.mean(axis=0))  # type: ignore[union-attr]
-        labels = ", ".join(sorted({o.label for o in objs}))
-        area.summary = f"A {area.label} with {labels}."  # type: ignore[union-attr]
+        area_node.position = (
+            float(pts[:, 0].mean()),
+            float(pts[:, 1].mean()),
+            float(pts[:, 2].mean()),
+        )
+        area_node.summary = (
+            f"A {area_node.label} with {', '.join(sorted({o.label for o in objs}))}."
+        )
     for room_id in room_ids.values():
-        room = graph.get(room_id)
-        areas = [graph.get(a) for a in graph.children(room_id)]
-        labels = [graph.get(o).label for a in areas for o in graph.children(a.id)]
-        floor = graph.get(room.floor_id) if room.floor_id else None  # type: ignore[union-attr]
-        room.summary = summarise_room(  # type: ignore[union-attr]
-            room.label,
-            getattr(floor, "level", None),
+        room_node = graph.get(room_id)
+        assert isinstance(room_node, RoomNode)
+        areas = [
+            a for a in (graph.get(c) for c in graph.children(room_id)) if isinstance(a, AreaNode)
+        ]
+        contents = [graph.get(o).label for a in areas for o in graph.children(a.id)]
+        floor_node = graph.get(room_node.floor_id) if room_node.floor_id else None
+        room_node.summary = summarise_room(
+            room_node.label,
+            floor_node.level if isinstance(floor_node, FloorNode) else None,
             [a.summary for a in areas],
-            labels,  # type: ignore[union-attr]
+            contents,
         )
     objects = list(graph.objects())
     room_of = {o.id: o.room_id for o in objects}

@@ -96,7 +96,7 @@ class ObjectMap:
             if i in matched_obs:
                 continue
             node = ObjectNode(
-                id=self.new_id(),  # type: ignore[arg-type]
+                id=self.new_id(),
                 label=obs.label,
                 position=tuple(float(v) for v in obs.centroid),  # type: ignore[arg-type]
                 bbox=obs.bbox,

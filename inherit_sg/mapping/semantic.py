@@ -14,7 +14,7 @@ from typing import Protocol
 import numpy as np
 
 from inherit_sg.mapping.backproject import Observation, observe
-from inherit_sg.mapping.object_map import IntegrationResult, ObjectMap
+from inherit_sg.mapping.object_map import ObjectMap
 from inherit_sg.model import Frame
 from inherit_sg.perception.base import (
     Describer,
@@ -91,11 +91,15 @@ class SemanticStream:
                 obs.visual_feature = feat
         return observations, kept
 
-    def process(
-        self, frame: Frame, floor_id: str | None
-    ) -> tuple[IntegrationResult, KeyframeStats]:
-        """Integrate one keyframe; new nodes get a description."""
-        observations, detections = self.observe_keyframe(frame)
+    def integrate(
+        self,
+        frame: Frame,
+        observations: list[Observation],
+        detections: list[Detection],
+        floor_id: str | None,
+    ) -> tuple[list[tuple[str, Detection]], KeyframeStats]:
+        """Associate and fuse one keyframe's observations; new nodes get a description.
+        Returns each detection with the node it went to."""
         result = self.objects.integrate(observations, floor_id)
         stats = KeyframeStats(
             detections=len(detections),
@@ -104,15 +108,24 @@ class SemanticStream:
             matched=len(result.matched),
             by_stage=Counter(m.stage for m in result.matched),
         )
-        index_of = {m.node_id: m.observation for m in result.matched}
+        node_of = {m.observation: m.node_id for m in result.matched}
         created = iter(result.created)
+        assigned: list[tuple[str, Detection]] = []
         for i, (obs, det) in enumerate(zip(observations, detections, strict=True)):
-            node_id = next((nid for nid, oi in index_of.items() if oi == i), None)
+            node_id = node_of.get(i)
             if node_id is None:
                 node_id = next(created)
                 self._describe(node_id, frame, det, obs)
             self._vote_colour(node_id, frame, det)
-        return result, stats
+            assigned.append((node_id, det))
+        return assigned, stats
+
+    def process(
+        self, frame: Frame, floor_id: str | None
+    ) -> tuple[list[tuple[str, Detection]], KeyframeStats]:
+        """Observe and integrate one keyframe."""
+        observations, detections = self.observe_keyframe(frame)
+        return self.integrate(frame, observations, detections, floor_id)
 
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)

@@ -7,9 +7,10 @@ Node ids are strings with a layer prefix (``floor:0``, ``room:3``, ``area:12``,
 from __future__ import annotations
 
 from enum import IntEnum, StrEnum
-from typing import NewType
+from typing import TypeAlias
 
-NodeId = NewType("NodeId", str)
+# A node id is a plain string whose prefix names its layer (see make_id / layer_of).
+NodeId: TypeAlias = str
 
 
 class Layer(IntEnum):
@@ -66,7 +67,7 @@ _ENDPOINTS = {
 
 def make_id(layer: Layer, key: int | str) -> NodeId:
     """Build the id of a node of ``layer`` from a counter or a string key."""
-    return NodeId(f"{layer.prefix}:{key}")
+    return f"{layer.prefix}:{key}"
 
 
 def layer_of(node_id: str) -> Layer:

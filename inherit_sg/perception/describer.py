@@ -54,17 +54,25 @@ class TemplateDescriber:
 
     def describe(self, obs: ObjectObservation) -> str:
         """E.g. "a red chair, about 0.5 × 0.5 × 0.9 m, medium-sized, in the kitchen"."""
-        label = obs.label.strip().lower() or "object"
-        colour = colour_name(obs.rgb, obs.mask)
-        noun = label if colour == "unknown" else f"{colour} {label}"
-        parts = [f"{_article(noun)} {noun}"]
-        if all(math.isfinite(v) for v in obs.extent) and max(obs.extent) > 0:
-            parts.append(f"about {_dims(obs.extent)} m")
-            parts.append(f"{size_class(obs.extent)}-sized")
-        text = ", ".join(parts)
-        if obs.room:
-            text += f", in the {obs.room.strip().lower()}"
-        return text
+        return template_description(obs.label, colour_name(obs.rgb, obs.mask), obs.extent, obs.room)
+
+
+def template_description(
+    label: str, colour: str, extent: tuple[float, float, float], room: str | None = None
+) -> str:
+    """The offline sentence from a label, a colour name ("unknown" to omit it), the 3D
+    extent in metres and the room label; also used to refresh descriptions when fused
+    observations change an object's size or room."""
+    label = label.strip().lower() or "object"
+    noun = label if colour == "unknown" else f"{colour} {label}"
+    parts = [f"{_article(noun)} {noun}"]
+    if all(math.isfinite(v) for v in extent) and max(extent) > 0:
+        parts.append(f"about {_dims(extent)} m")
+        parts.append(f"{size_class(extent)}-sized")
+    text = ", ".join(parts)
+    if room:
+        text += f", in the {room.strip().lower()}"
+    return text
 
 
 class FallbackDescriber:

@@ -1,0 +1,98 @@
+"""``inherit-sg map``: build maps from RGB-D datasets."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from inherit_sg.cli.output import handle_errors, print_json, print_table
+
+app = typer.Typer(
+    name="map", help="Build and extend maps from posed RGB-D datasets.", no_args_is_help=True
+)
+
+
+@app.command("build")
+@handle_errors
+def build(
+    dataset: Annotated[
+        Path, typer.Argument(help="Dataset folder (isg, Replica, ScanNet, TUM, HM3D).")
+    ],
+    map_dir: Annotated[
+        Path, typer.Option("--map", "-m", help="Map directory (created when absent).")
+    ],
+    fmt: Annotated[
+        str, typer.Option("--format", "-f", help="auto, isg, replica, scannet, tum or hm3d.")
+    ] = "auto",
+    session: Annotated[str | None, typer.Option(help="Session name (default session-N).")] = None,
+    max_frames: Annotated[int | None, typer.Option(help="Only the first N frames.")] = None,
+    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
+    overrides: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Config override section.field=value (repeatable)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+) -> None:
+    """Map DATASET into a map directory as a new session (appends to an existing map)."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from inherit_sg.config import load_config
+    from inherit_sg.facade import build_map
+
+    cfg = load_config(config_file, overrides or [])
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        transient=as_json,
+    ) as bars:
+        frames = bars.add_task("frames", total=None)
+        keyframes = bars.add_task("keyframes (semantic)", total=None)
+        objects = bars.add_task("objects", total=None)
+
+        def total(n: int) -> None:
+            bars.update(frames, total=n)
+
+        def progress(p: Any) -> None:
+            bars.update(frames, completed=p.frames)
+            bars.update(keyframes, completed=p.keyframes_done, total=max(p.keyframes, 1))
+            bars.update(objects, completed=p.objects, total=max(p.objects, 1))
+
+        summary = build_map(
+            dataset,
+            map_dir,
+            fmt=fmt,
+            session_name=session,
+            config=cfg,
+            max_frames=max_frames,
+            progress=progress,
+            total=total,
+        )
+    if as_json:
+        print_json(summary)
+        return
+    rows = [
+        [k, summary[k]]
+        for k in (
+            "session_id",
+            "frames",
+            "keyframes",
+            "dropped_keyframes",
+            "floors",
+            "rooms",
+            "areas",
+            "objects",
+            "relations",
+            "missing",
+            "seconds",
+            "geometry_fps",
+            "semantic_keyframes_per_s",
+        )
+    ]
+    rows.append(["updates", ", ".join(f"{k} {v}" for k, v in summary["updates"].items())])
+    print_table(["", "value"], rows, title=f"map {summary['map']}")
+    for png in summary["bev"]:
+        typer.echo(f"BEV picture: {png}")

@@ -1,0 +1,340 @@
+"""Dual-stream orchestration (paper §III-B/C): the geometric stream runs on every frame
+in the caller's thread; the semantic stream runs on a worker thread fed by the
+keyframe queue; hard (floor change) and soft (supervisor) triggers schedule a global
+update that refines rooms, rebuilds the hierarchy and persists the diff through the
+single writer.
+
+Back-pressure: for recorded datasets (``block``) the producer waits while the queue is
+full, so no keyframe is lost; for live streams (``drop``) the queue drops its oldest
+non-hard keyframe and counts it, so the geometric stream never stalls.
+
+Durability: the working graph is flushed at every update and every ``flush_every``
+keyframes, so an interrupted build loses at most the last unflushed batch; the map on
+disk is always a consistent committed state.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+
+import cv2
+import numpy as np
+
+from inherit_sg.config import Config
+from inherit_sg.errors import InheritSGError
+from inherit_sg.geometry.events import FloorChanged, RoomEntered
+from inherit_sg.geometry.gating import PendingKeyframe
+from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
+from inherit_sg.mapping.missing import MissingTracker
+from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.semantic import LabelSimilarity, SemanticStream
+from inherit_sg.mapping.supervisor import HeuristicSupervisor, Supervisor
+from inherit_sg.mapping.update import HierarchyBuilder
+from inherit_sg.model import Edge, EdgeKind, Frame, Keyframe, ObjectNode, ObjectStatus, Session
+from inherit_sg.store import MapStore
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class BuildProgress:
+    """Counters reported to the progress callback."""
+
+    frames: int = 0
+    keyframes: int = 0
+    keyframes_done: int = 0
+    objects: int = 0
+    updates: int = 0
+    dropped: int = 0
+
+
+@dataclass
+class BuildSummary:
+    """What a mapping session did."""
+
+    session_id: str
+    frames: int
+    keyframes: int
+    dropped_keyframes: int
+    objects: int
+    rooms: int
+    floors: int
+    areas: int
+    relations: int
+    missing: int
+    updates: dict[str, int]
+    seconds: float
+    geometry_fps: float
+    semantic_keyframes_per_s: float
+    timings_s: dict[str, float] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-able form."""
+        return dict(vars(self))
+
+
+class Mapper:
+    """Builds one mapping session into an open, writable :class:`MapStore`."""
+
+    def __init__(
+        self,
+        store: MapStore,
+        config: Config,
+        session: Session,
+        *,
+        backpressure: str = "block",
+        flush_every: int = 40,
+        progress: Callable[[BuildProgress], None] | None = None,
+        supervisor: Supervisor | None = None,
+    ) -> None:
+        from inherit_sg.embed import get_text_embedder
+        from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
+
+        if backpressure not in ("block", "drop"):
+            raise ValueError("backpressure must be 'block' or 'drop'")
+        self.store, self.config, self.session = store, config, session
+        self.backpressure, self.flush_every, self._progress_cb = backpressure, flush_every, progress
+        self.progress = BuildProgress()
+        self.embedder = get_text_embedder(
+            config.embedder.model,
+            batch_size=config.embedder.batch_size,
+            device=config.embedder.device,
+        )
+        self.graph = store.load_graph()
+        self.graph.flush_changes()
+        earlier = [o for o in self.graph.objects() if o.status is not ObjectStatus.REMOVED]
+        self.objects = ObjectMap(LabelSimilarity(self.embedder))
+        for node in earlier:
+            self.objects.adopt(node)
+        self.missing = MissingTracker(earlier)
+        self.geometry = load_geometry(store.path, config, session.id)
+        if backpressure == "block":
+            new_queue(self.geometry, max(8, config.geometry.queue_capacity))
+        describer = create_describer(config)
+        self.semantic = SemanticStream(
+            create_segmenter(config), create_visual_encoder(config), describer, self.objects
+        )
+        self.builder = HierarchyBuilder(
+            self.embedder, refresh_descriptions=describer.name == "offline"
+        )
+        self.builder.remember_embedded(self.graph)
+        self.supervisor = supervisor or HeuristicSupervisor()
+        self._lock = threading.RLock()  # geometric stream, working graph, object map
+        self._update_reason: str | None = None
+        self._pending_keyframes: list[Keyframe] = []
+        self._pending_seen: list[Edge] = []
+        self._since_flush = 0
+        self._error: BaseException | None = None
+        self._updates = {"hard": 0, "soft": 0, "periodic": 0, "final": 0}
+        self._timings = {"geometry": 0.0, "semantic": 0.0, "update": 0.0, "persist": 0.0}
+        self._worker = threading.Thread(target=self._work, name="semantic-stream", daemon=True)
+
+    # ------------------------------------------------------------------ producer
+    def run(self, frames: Iterable[Frame]) -> BuildSummary:
+        """Consume every frame, then finish the session (final update and flush)."""
+        start = time.perf_counter()
+        self._worker.start()
+        try:
+            for frame in frames:
+                self._raise_worker_error()
+                self.process_frame(frame)
+        finally:
+            self.geometry.queue.close()
+            self._worker.join()
+        self._raise_worker_error()
+        return self.finish(time.perf_counter() - start)
+
+    def process_frame(self, frame: Frame) -> None:
+        """Geometric stream on one frame; schedules updates on trigger events."""
+        queue = self.geometry.queue
+        if self.backpressure == "block":
+            while len(queue) >= queue.capacity - 1 and self._worker.is_alive():
+                time.sleep(0.002)
+        t0 = time.perf_counter()
+        with self._lock:
+            events = self.geometry.process(frame.validate())
+        self._timings["geometry"] += time.perf_counter() - t0
+        self.progress.frames += 1
+        for event in events:
+            if isinstance(event, FloorChanged):
+                self._request_update(
+                    f"hard: floor change {event.from_floor} → {event.to_floor}", "hard"
+                )
+            elif isinstance(event, RoomEntered):
+                with self._lock:
+                    inside = [o.id for o in self.objects.nodes() if o.room_id == event.room_id]
+                trigger, reason = self.supervisor.should_update(event.room_id, inside)
+                if trigger:
+                    self._request_update(f"soft: {reason}", "soft")
+        self.progress.keyframes = self.geometry.stats.keyframes
+        self.progress.dropped = queue.dropped
+        self._report()
+
+    def _request_update(self, reason: str, kind: str) -> None:
+        with self._lock:
+            if self._update_reason is None:
+                self._update_reason = reason
+                self._updates[kind] += 1
+
+    # -------------------------------------------------------------- semantic worker
+    def _work(self) -> None:
+        try:
+            while True:
+                item = self.geometry.queue.get(timeout=0.05)
+                if item is not None:
+                    self._process_keyframe(item)
+                elif self.geometry.queue.closed and len(self.geometry.queue) == 0:
+                    return
+                reason = self._update_reason
+                if reason is not None and (
+                    len(self.geometry.queue) == 0 or reason.startswith("hard")
+                ):
+                    self.global_update(reason)
+                elif self._since_flush >= self.flush_every:
+                    self._updates["periodic"] += 1
+                    self.global_update("periodic flush")
+        except BaseException as exc:  # surfaced in the producer thread
+            self._error = exc
+
+    def _process_keyframe(self, item: PendingKeyframe) -> None:
+        t0 = time.perf_counter()
+        frame, kf = item.frame, item.keyframe
+        frame_at = self.session.started + frame.timestamp
+        observations, detections = self.semantic.observe_keyframe(frame)
+        for obs in observations:
+            obs.timestamp, obs.keyframe_id = frame_at, kf.id
+        with self._lock:
+            assigned, _ = self.semantic.integrate(frame, observations, detections, kf.floor_id)
+            for node_id, det in assigned:
+                self._pending_seen.append(
+                    Edge.make(
+                        EdgeKind.SEEN_IN,
+                        node_id,
+                        kf.id,
+                        bbox=det.bbox_xyxy,
+                        label=det.label,
+                        score=round(det.score, 3),
+                    )
+                )
+            self.missing.observed(node_id for node_id, _ in assigned)
+            self.missing.check_frame(frame)
+            kf.jpeg = encode_keyframe(
+                frame.rgb, self.config.store.keyframe_max_side, self.config.store.jpeg_quality
+            )
+            self._pending_keyframes.append(kf)
+            self.progress.objects = len(self.objects)
+        self.progress.keyframes_done += 1
+        self._since_flush += 1
+        self._timings["semantic"] += time.perf_counter() - t0
+        self._report()
+
+    # ------------------------------------------------------------- global update
+    def global_update(self, reason: str) -> None:
+        """Refine rooms, rebuild the hierarchy, persist the diff (single writer)."""
+        t0 = time.perf_counter()
+        with self._lock:
+            self._update_reason = None
+            log.info("global update: %s", reason)
+            self.geometry.refine()
+            self.geometry.apply_to(self.graph, refined=True)
+            merged = self.objects.remove_duplicates()
+            alias = {drop: keep for keep, drop in merged}
+            self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
+            for room in self.graph.nodes():
+                if room.id.startswith("room:"):
+                    inside = [o.id for o in self.objects.nodes() if o.room_id == room.id]
+                    self.supervisor.summarised(room.id, inside)
+            t1 = time.perf_counter()
+            self._timings["update"] += t1 - t0
+            self._persist(alias)
+            self._timings["persist"] += time.perf_counter() - t1
+        self.progress.updates += 1
+        self._report()
+
+    def _persist(self, alias: dict[str, str]) -> None:
+        keyframes, self._pending_keyframes = self._pending_keyframes, []
+        if keyframes:
+            self.store.add_keyframes(keyframes)
+        for edge in self._pending_seen:
+            src = alias.get(edge.src, edge.src)
+            if src in self.graph:
+                self.graph.add_edge(Edge(edge.kind, src, edge.dst, edge.props))
+        self._pending_seen = []
+        self.store.write_changes(self.graph)
+        self.session.frames = self.progress.frames
+        self.session.keyframes = self.progress.keyframes_done
+        self.store.upsert_session(self.session)
+        save_geometry(self.geometry, self.store.path)
+        self._since_flush = 0
+
+    # -------------------------------------------------------------------- finish
+    def finish(self, seconds: float) -> BuildSummary:
+        """Final update: missing objects, last flush, the session record."""
+        missing = self.missing.finish()
+        for oid in missing:
+            if oid in self.objects.objects:
+                self.objects.objects[oid].dirty = True
+        self.session.finished = time.time()
+        self._updates["final"] += 1
+        self.global_update("final update at the end of the session")
+        stats = self.geometry.stats
+        return BuildSummary(
+            session_id=self.session.id,
+            frames=self.progress.frames,
+            keyframes=self.progress.keyframes_done,
+            dropped_keyframes=self.geometry.queue.dropped,
+            objects=sum(1 for o in self.graph.objects() if o.status is ObjectStatus.ACTIVE),
+            rooms=sum(1 for n in self.graph.nodes() if n.id.startswith("room:")),
+            floors=sum(1 for n in self.graph.nodes() if n.id.startswith("floor:")),
+            areas=sum(1 for n in self.graph.nodes() if n.id.startswith("area:")),
+            relations=sum(1 for _ in self.graph.edges(EdgeKind.RELATION)),
+            missing=len(missing),
+            updates=dict(self._updates),
+            seconds=round(seconds, 2),
+            geometry_fps=round(stats.frames / self._timings["geometry"], 1)
+            if self._timings["geometry"]
+            else 0.0,
+            semantic_keyframes_per_s=round(
+                self.progress.keyframes_done / self._timings["semantic"], 2
+            )
+            if self._timings["semantic"]
+            else 0.0,
+            timings_s={k: round(v, 2) for k, v in self._timings.items()},
+        )
+
+    def objects_in(self, room_id: str) -> list[ObjectNode]:
+        """Current object nodes of one room."""
+        with self._lock:
+            return [o for o in self.objects.nodes() if o.room_id == room_id]
+
+    def _raise_worker_error(self) -> None:
+        if self._error is not None:
+            err, self._error = self._error, None
+            if isinstance(err, InheritSGError):
+                raise err
+            raise RuntimeError(f"semantic stream failed: {err!r}") from err
+
+    def _report(self) -> None:
+        if self._progress_cb is not None:
+            self._progress_cb(self.progress)
+
+
+def encode_keyframe(rgb: np.ndarray, max_side: int, quality: int) -> bytes:
+    """JPEG bytes of a keyframe, downsized so its longer side is at most ``max_side``."""
+    h, w = rgb.shape[:2]
+    scale = min(1.0, max_side / max(h, w))
+    img = (
+        rgb
+        if scale >= 1.0
+        else cv2.resize(rgb, (round(w * scale), round(h * scale)), interpolation=cv2.INTER_AREA)
+    )
+    ok, buf = cv2.imencode(
+        ".jpg", cv2.cvtColor(img, cv2.COLOR_RGB2BGR), [cv2.IMWRITE_JPEG_QUALITY, quality]
+    )
+    if not ok:
+        raise RuntimeError("JPEG encoding failed")
+    return buf.tobytes()

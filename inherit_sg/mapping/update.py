@@ -1,0 +1,242 @@
+"""The global map update (paper §III-C "Event-Triggered Map Updates"): after the room
+masks are refined, objects are reassigned to rooms and the area and room layers are
+rebuilt bottom-up; relations are re-inferred; node texts and embeddings are refreshed
+only where they changed. Everything is written into the working :class:`SceneGraph` as
+a diff, so the single writer persists only what changed."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from inherit_sg.mapping.areas import cluster_objects, label_area, summarise_area
+from inherit_sg.mapping.node_text import node_text
+from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.relations import infer_relations
+from inherit_sg.mapping.room_semantics import infer_room_type, summarise_room
+from inherit_sg.mapping.semantic import LabelEmbedder
+from inherit_sg.model import (
+    AreaNode,
+    Edge,
+    EdgeKind,
+    FloorNode,
+    Layer,
+    ObjectNode,
+    ObjectStatus,
+    RoomNode,
+    SceneGraph,
+    make_id,
+)
+from inherit_sg.perception.describer import template_description
+
+RoomLocator = Callable[[float, float, str | None], str | None]
+
+
+@dataclass
+class UpdateStats:
+    """What one global update changed."""
+
+    objects: int = 0
+    rooms: int = 0
+    areas: int = 0
+    relations: int = 0
+    embedded: int = 0
+
+
+def sync_edges(
+    graph: SceneGraph, kind: EdgeKind, desired: Iterable[Edge], scope: set[str] | None = None
+) -> int:
+    """Make the ``kind`` edges of ``graph`` (whose source is in ``scope``, default all)
+    equal to ``desired``; returns how many edges were added or replaced."""
+    wanted = {e.key: e for e in desired}
+    for edge in list(graph.edges(kind)):
+        if (scope is None or edge.src in scope) and edge.key not in wanted:
+            graph.remove_edge(kind, edge.src, edge.dst, str(edge.prop("predicate", "")))
+    changed = 0
+    for key, edge in wanted.items():
+        if graph.edge(key) != edge:
+            graph.add_edge(edge)
+            changed += 1
+    return changed
+
+
+class HierarchyBuilder:
+    """Rebuilds objects → areas → rooms in the working graph and keeps embeddings fresh."""
+
+    def __init__(self, embedder: LabelEmbedder, refresh_descriptions: bool = True) -> None:
+        self.embedder = embedder
+        self.refresh_descriptions = refresh_descriptions
+        self._embedded_text: dict[str, str] = {}
+
+    def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
+        """Closest room of the object's floor by room centre (objects on thresholds,
+        in doorways or outside the observed free space)."""
+        best, best_d = None, 2.5
+        for room in graph.nodes(Layer.ROOM):
+            if isinstance(room, RoomNode) and room.floor_id == node.floor_id:
+                d = float(
+                    np.hypot(
+                        room.position[0] - node.position[0], room.position[1] - node.position[1]
+                    )
+                )
+                if room.mask is not None and room.mask.contains_xy(
+                    node.position[0], node.position[1]
+                ):
+                    return room.id
+                if d < best_d:
+                    best, best_d = room.id, d
+        return best
+
+    def rebuild(self, graph: SceneGraph, objects: ObjectMap, locate: RoomLocator) -> UpdateStats:
+        """Run the bottom-up rebuild; the floor/room layers must already be current."""
+        stats = UpdateStats()
+        for dropped in objects.removed:
+            if dropped in graph:
+                graph.remove(dropped)
+        objects.removed.clear()
+        before = {
+            t.id: (t.node.room_id, t.node.area_id, t.node.description, t.node.label, t.node.status)
+            for t in objects.objects.values()
+        }
+        by_room: dict[str, list[ObjectNode]] = defaultdict(list)
+        for tracked in objects.objects.values():
+            node = tracked.node
+            node.floor_id = tracked.floor_id
+            if node.status is ObjectStatus.REMOVED:
+                continue
+            found = locate(node.position[0], node.position[1], node.floor_id) or self._nearest_room(
+                graph, node
+            )
+            node.room_id = found
+            if found is not None:
+                by_room[found].append(node)
+            else:
+                node.area_id = None
+            stats.objects += 1
+        rooms = {r.id: r for r in graph.nodes(Layer.ROOM) if isinstance(r, RoomNode)}
+        areas_wanted: dict[str, AreaNode] = {}
+        has_area: list[Edge] = []
+        has_object: list[Edge] = []
+        for room_id, members in sorted(by_room.items()):
+            if room_id not in rooms:
+                continue
+            room = rooms[room_id]
+            room_num = room_id.partition(":")[2]
+            summaries = []
+            for k, cluster in enumerate(cluster_objects(members)):
+                labels = [o.label for o in cluster]
+                label = label_area(labels)
+                pts = np.array([o.position for o in cluster], dtype=float)
+                area = AreaNode(
+                    make_id(Layer.AREA, f"{room_num}.{k}"),
+                    label,
+                    room_id=room_id,
+                    position=tuple(float(v) for v in pts.mean(axis=0)),  # type: ignore[arg-type]
+                    summary=summarise_area(label, labels),
+                )
+                areas_wanted[area.id] = area
+                summaries.append(area.summary)
+                has_area.append(Edge.make(EdgeKind.HAS_AREA, room_id, area.id))
+                for o in cluster:
+                    o.area_id = area.id
+                    has_object.append(Edge.make(EdgeKind.HAS_OBJECT, area.id, o.id))
+            labels = [o.label for o in members]
+            room.label = infer_room_type(labels)
+            floor = graph.get(room.floor_id) if room.floor_id and room.floor_id in graph else None
+            level = floor.level if isinstance(floor, FloorNode) else None
+            room.summary = summarise_room(room.label, level, summaries, labels)
+            graph.touch(room_id)
+        for room_id, room in rooms.items():
+            if room_id not in by_room:
+                floor = (
+                    graph.get(room.floor_id) if room.floor_id and room.floor_id in graph else None
+                )
+                room.label = "room" if room.label in ("", "room") else room.label
+                room.summary = summarise_room(room.label, getattr(floor, "level", None), [], [])
+                graph.touch(room_id)
+        stats.rooms = len(rooms)
+        if self.refresh_descriptions:
+            room_labels = {rid: r.label for rid, r in rooms.items()}
+            for tracked in objects.objects.values():
+                node = tracked.node
+                colour = str(node.attributes.get("colour", "unknown"))
+                extent = tuple(float(v) for v in node.bbox.size)
+                node.description = template_description(
+                    node.label,
+                    colour,
+                    (extent[0], extent[1], extent[2]),
+                    room_labels.get(node.room_id or ""),
+                )
+        for tracked in objects.objects.values():
+            node = tracked.node
+            state = (node.room_id, node.area_id, node.description, node.label, node.status)
+            if node.id not in graph:
+                graph.add_or_update(node)
+            elif tracked.dirty or before.get(node.id) != state:
+                graph.touch(node.id)
+            tracked.dirty = False
+        self._sync_areas(graph, areas_wanted)
+        stats.areas = len(areas_wanted)
+        sync_edges(graph, EdgeKind.HAS_AREA, has_area)
+        sync_edges(graph, EdgeKind.HAS_OBJECT, has_object)
+        live = [
+            o.node for o in objects.objects.values() if o.node.status is not ObjectStatus.REMOVED
+        ]
+        neighbours: dict[str, set[str]] = defaultdict(set)
+        for e in graph.edges(EdgeKind.CONNECTS):
+            neighbours[e.src].add(e.dst)
+            neighbours[e.dst].add(e.src)
+        relations = infer_relations(live, {o.id: o.room_id for o in live}, neighbours)
+        stats.relations = len(relations)
+        sync_edges(graph, EdgeKind.RELATION, [r.to_edge() for r in relations])
+        stats.embedded = self.embed_changed(graph)
+        return stats
+
+    def _sync_areas(self, graph: SceneGraph, wanted: dict[str, AreaNode]) -> None:
+        for node in list(graph.nodes(Layer.AREA)):
+            if node.id not in wanted:
+                graph.remove(node.id)
+        for area_id, area in wanted.items():
+            old = graph.get(area_id) if area_id in graph else None
+            if isinstance(old, AreaNode):
+                if (old.label, old.summary, old.position, old.room_id) != (
+                    area.label,
+                    area.summary,
+                    area.position,
+                    area.room_id,
+                ):
+                    old.label, old.summary, old.position, old.room_id = (
+                        area.label,
+                        area.summary,
+                        area.position,
+                        area.room_id,
+                    )
+                    graph.touch(area_id)
+            else:
+                graph.add_or_update(area)
+
+    def embed_changed(self, graph: SceneGraph) -> int:
+        """Embed nodes whose text changed since they were last embedded."""
+        todo = []
+        for node in graph.nodes():
+            text = node_text(node)
+            if text is not None and self._embedded_text.get(node.id) != text:
+                todo.append((node, text))
+        if not todo:
+            return 0
+        vectors = self.embedder.embed([t for _, t in todo])
+        for (node, text), vec in zip(todo, vectors, strict=True):
+            node.text_embedding = vec  # type: ignore[union-attr]
+            self._embedded_text[node.id] = text
+            graph.touch(node.id)
+        return len(todo)
+
+    def remember_embedded(self, graph: SceneGraph) -> None:
+        """Mark the embeddings already in ``graph`` (a reopened map) as current."""
+        for node in graph.nodes():
+            text = node_text(node)
+            if text is not None and getattr(node, "text_embedding", None) is not None:
+                self._embedded_text[node.id] = text
