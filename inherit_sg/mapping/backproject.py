@@ -42,10 +42,14 @@ def voxel_downsample(points: np.ndarray, voxel: float) -> np.ndarray:
     if len(points) == 0:
         return points
     keys = np.floor(points / voxel).astype(np.int64)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    inverse = inverse.reshape(-1)
+    keys -= keys.min(axis=0)
+    dims = keys.max(axis=0) + 1
+    # one integer per voxel: a 1-D unique is much faster than np.unique(axis=0)
+    flat = (keys[:, 0] * dims[1] + keys[:, 1]) * dims[2] + keys[:, 2]
+    _, inverse, counts = np.unique(flat, return_inverse=True, return_counts=True)
     sums = np.zeros((len(counts), 3))
-    np.add.at(sums, inverse, points)
+    for axis in range(3):
+        sums[:, axis] = np.bincount(inverse, weights=points[:, axis], minlength=len(counts))
     return sums / counts[:, None]
 
 

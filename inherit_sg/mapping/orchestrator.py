@@ -104,6 +104,7 @@ class Mapper:
             batch_size=config.embedder.batch_size,
             device=config.embedder.device,
         )
+        self.embedder.embed(["warm-up"])  # load the model now, not inside the worker's lock
         self.graph = store.load_graph()
         self.graph.flush_changes()
         earlier = [o for o in self.graph.objects() if o.status is not ObjectStatus.REMOVED]
