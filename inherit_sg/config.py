@@ -138,7 +138,7 @@ class GeometryConfig(_Section):
     edt_sigma: float = Field(0.15, ge=0.0, description="Gaussian smoothing of the EDT (m)")
     seed_min_distance: float = Field(0.6, gt=0.0, description="watershed seed spacing (m)")
     seed_min_clearance: float = Field(0.35, gt=0.0, description="smallest seed EDT (m)")
-    door_max_width: float = Field(1.25, gt=0.0, description="wider passages join rooms (m)")
+    door_max_width: float = Field(1.1, gt=0.0, description="wider passages join rooms (m)")
     plateau_ratio: float = Field(0.85, gt=0.0, le=1.0, description="merge flat EDT ridges")
     min_room_area: float = Field(1.5, gt=0.0, description="smaller regions are pruned (m²)")
     segment_every: int = Field(15, ge=1, description="re-segment rooms every n frames")
