@@ -156,8 +156,8 @@ class Mapper:
             while len(queue) >= queue.capacity - 1 and self._worker.is_alive():
                 time.sleep(0.002)
         t0 = time.perf_counter()
-        with self._lock:
-            events = self.geometry.process(frame.validate())
+        # the geometric stream locks itself; it never waits for the semantic side
+        events = self.geometry.process(frame.validate())
         self._timings["geometry"] += time.perf_counter() - t0
         self.progress.frames += 1
         for event in events:

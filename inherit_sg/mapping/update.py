@@ -6,6 +6,7 @@ a diff, so the single writer persists only what changed."""
 
 from __future__ import annotations
 
+import re
 from collections import defaultdict
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -31,6 +32,14 @@ from inherit_sg.model import (
     make_id,
 )
 from inherit_sg.perception.describer import template_description
+
+_NUMBERS = re.compile(r"\d+(?:\.\d+)?")
+
+
+def _wording(text: str) -> str:
+    """A node text with its numbers masked: the key that decides re-embedding."""
+    return _NUMBERS.sub("#", text)
+
 
 RoomLocator = Callable[[float, float, str | None], str | None]
 
@@ -219,18 +228,19 @@ class HierarchyBuilder:
                 graph.add_or_update(area)
 
     def embed_changed(self, graph: SceneGraph) -> int:
-        """Embed nodes whose text changed since they were last embedded."""
+        """Embed nodes whose text changed in words since they were last embedded (a
+        fused size moving by a centimetre does not change what a node means)."""
         todo = []
         for node in graph.nodes():
             text = node_text(node)
-            if text is not None and self._embedded_text.get(node.id) != text:
+            if text is not None and self._embedded_text.get(node.id) != _wording(text):
                 todo.append((node, text))
         if not todo:
             return 0
         vectors = self.embedder.embed([t for _, t in todo])
         for (node, text), vec in zip(todo, vectors, strict=True):
             node.text_embedding = vec  # type: ignore[union-attr]
-            self._embedded_text[node.id] = text
+            self._embedded_text[node.id] = _wording(text)
             graph.touch(node.id)
         return len(todo)
 
@@ -239,4 +249,4 @@ class HierarchyBuilder:
         for node in graph.nodes():
             text = node_text(node)
             if text is not None and getattr(node, "text_embedding", None) is not None:
-                self._embedded_text[node.id] = text
+                self._embedded_text[node.id] = _wording(text)
