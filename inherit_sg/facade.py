@@ -6,11 +6,15 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from inherit_sg.config import Config, load_config
 from inherit_sg.errors import InputError, MapError
 from inherit_sg.store import CypherResult, MapStore
+
+if TYPE_CHECKING:
+    from inherit_sg.retrieval.conversation import Conversation
+    from inherit_sg.retrieval.result import QueryResult
 
 EXPORT_FORMAT = "inherit-sg-map"
 EXPORT_VERSION = 1
@@ -82,6 +86,27 @@ class MapService:
     ) -> CypherResult:
         """Run a read-only Cypher query."""
         return self.store.cypher(query, params, read_only=True, max_rows=max_rows)
+
+    def query(
+        self,
+        text: str,
+        *,
+        conversation: Conversation | None = None,
+        verify: bool | None = None,
+        top_k: int | None = None,
+        explain: bool = False,
+    ) -> QueryResult:
+        """Answer a natural-language request (the query result JSON of DESIGN.md §4 is
+        ``.to_dict()``); one engine per service keeps the map in memory between calls."""
+        from inherit_sg.retrieval.engine import QueryEngine
+
+        engine: QueryEngine | None = getattr(self, "_query_engine", None)
+        if engine is None:
+            engine = QueryEngine(self.store, self.config)
+            self._query_engine = engine
+        return engine.query(
+            text, conversation=conversation, verify=verify, top_k=top_k, explain=explain
+        )
 
     # ------------------------------------------------------------ export
     def export_json(self, out: str | Path, *, images: bool = True) -> dict[str, int]:
@@ -254,12 +279,21 @@ def write_bev_pictures(mapper: Any, map_dir: Path) -> list[Path]:
     """One BEV PNG per floor under ``<map>/bev/``."""
     out_dir = map_dir / "bev"
     out_dir.mkdir(exist_ok=True)
+    from inherit_sg.model import RoomNode
+
+    labels = {
+        n.id: f"{n.label} ({n.id.partition(':')[2]})"
+        for n in mapper.graph.nodes()
+        if isinstance(n, RoomNode)
+    }
     written = []
     for floor in mapper.geometry.floors():
         level = floor.level
         try:
             written.append(
-                mapper.geometry.save_bev(out_dir / f"floor_{level}.png", floor.id, refined=True)
+                mapper.geometry.save_bev(
+                    out_dir / f"floor_{level}.png", floor.id, refined=True, labels=labels
+                )
             )
         except ValueError:
             continue
