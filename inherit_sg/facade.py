@@ -13,6 +13,8 @@ from inherit_sg.errors import InputError, MapError
 from inherit_sg.store import CypherResult, MapStore
 
 if TYPE_CHECKING:
+    import numpy as np
+
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
 
@@ -95,9 +97,11 @@ class MapService:
         verify: bool | None = None,
         top_k: int | None = None,
         explain: bool = False,
+        image: np.ndarray | None = None,
     ) -> QueryResult:
         """Answer a natural-language request (the query result JSON of DESIGN.md §4 is
-        ``.to_dict()``); one engine per service keeps the map in memory between calls."""
+        ``.to_dict()``), optionally with a picture of the object (RGB uint8); one engine
+        per service keeps the map in memory between calls."""
         from inherit_sg.retrieval.engine import QueryEngine
 
         engine: QueryEngine | None = getattr(self, "_query_engine", None)
@@ -105,7 +109,12 @@ class MapService:
             engine = QueryEngine(self.store, self.config)
             self._query_engine = engine
         return engine.query(
-            text, conversation=conversation, verify=verify, top_k=top_k, explain=explain
+            text,
+            conversation=conversation,
+            verify=verify,
+            top_k=top_k,
+            explain=explain,
+            image=image,
         )
 
     # ------------------------------------------------------------ export

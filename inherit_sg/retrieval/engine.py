@@ -1,0 +1,330 @@
+"""QueryEngine: parse → conversation → plan → candidates → score → graph checks →
+verify → answer, with a human-readable trace and timings per stage.
+
+One engine serves one open map. It keeps a :class:`MapSnapshot` of the map in memory and
+reloads it only when the map's files change, so a request costs one or two Cypher calls
+plus in-memory work. Engines are safe to share between threads.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Protocol
+
+import numpy as np
+
+from inherit_sg.config import Config
+from inherit_sg.errors import InheritSGError, NodeNotFoundError
+from inherit_sg.model import ObjectNode
+from inherit_sg.perception.base import Segmenter, VisualEncoder, check_image
+from inherit_sg.retrieval.candidates import CandidateGenerator
+from inherit_sg.retrieval.conversation import Conversation
+from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
+from inherit_sg.retrieval.plan import Compiler, NodeSpec, QueryPlan
+from inherit_sg.retrieval.query import ParsedQuery
+from inherit_sg.retrieval.result import QueryResult, candidate_dict, node_summary
+from inherit_sg.retrieval.scoring import Scored, Scorer, landmark_quality
+from inherit_sg.retrieval.similarity import Embedder, PhraseSimilarity
+from inherit_sg.retrieval.snapshot import MapSnapshot, load_snapshot, map_version
+from inherit_sg.retrieval.trace import describe_query, explain_ranking
+from inherit_sg.retrieval.verify import Evidence, OfflineVerifier, Verifier, decode_jpeg, ground
+from inherit_sg.store import MapStore
+
+
+class Parser(Protocol):
+    """The rule parser or the LLM parser."""
+
+    name: str
+
+    def parse(self, text: str) -> ParsedQuery:
+        """Parse a request (QueryTextError for bad text)."""
+        ...
+
+
+def _ms(start: float) -> float:
+    return (time.perf_counter() - start) * 1000.0
+
+
+def _answerable(spec: NodeSpec, ranked: list[Scored]) -> bool:
+    """Whether the best candidate meets something: a positive score, or — for requests
+    made only of negations ("something not in the kitchen") — no penalty."""
+    if not ranked:
+        return False
+    if any(not c.negated for c in spec.scored()):
+        return ranked[0].score > 0.0
+    return ranked[0].score >= 0.0
+
+
+class QueryEngine:
+    """Answers natural-language requests on one map."""
+
+    def __init__(
+        self,
+        store: MapStore,
+        config: Config | None = None,
+        *,
+        parser: Parser | None = None,
+        embedder: Embedder | None = None,
+        verifier: Verifier | None = None,
+        segmenter: Segmenter | None = None,
+    ) -> None:
+        self.store = store
+        self.config = config or Config()
+        self.parser = parser or self._default_parser()
+        self._embedder = embedder
+        self.verifier = verifier or self._default_verifier()
+        self.segmenter = segmenter
+        self._segmenter_tried = segmenter is not None
+        self._encoder: VisualEncoder | None = None
+        self._snap: MapSnapshot | None = None
+        self._checker: GraphChecker | None = None
+        self._lock = threading.Lock()
+
+    # ----------------------------------------------------------- components
+    def _default_parser(self) -> Parser:
+        if self.config.retrieval.parser == "llm":
+            from inherit_sg.retrieval.llm_parser import LLMParser
+
+            return LLMParser.from_config(self.config.llm)
+        from inherit_sg.retrieval.rules import RuleParser
+
+        return RuleParser()
+
+    def _default_verifier(self) -> Verifier:
+        if self.config.llm.endpoint:
+            from inherit_sg.retrieval.verify_vlm import VlmVerifier
+
+            return VlmVerifier.from_config(self.config)
+        return OfflineVerifier()
+
+    @property
+    def similarity(self) -> PhraseSimilarity:
+        """Phrase similarity with the map's text embedder (loaded on first use)."""
+        if self._embedder is None:
+            from inherit_sg.embed import get_text_embedder
+
+            cfg = self.config.embedder
+            self._embedder = get_text_embedder(
+                self.store.info.text_embedder or cfg.model,
+                batch_size=cfg.batch_size,
+                cache_size=cfg.cache_size,
+                device=cfg.device,
+            )
+        return PhraseSimilarity(self._embedder)
+
+    def _get_segmenter(self, trace: list[str]) -> Segmenter | None:
+        """The configured text-prompted segmenter for verification (SAM3), if any."""
+        if not self._segmenter_tried:
+            self._segmenter_tried = True
+            if self.config.perception.segmenter == "sam3":
+                from inherit_sg.perception.registry import create_segmenter
+
+                try:
+                    self.segmenter = create_segmenter(self.config)
+                except InheritSGError as exc:
+                    trace.append(f"verify: SAM3 unavailable ({exc.message}); using SEEN_IN records")
+        return self.segmenter
+
+    def image_feature(self, image: np.ndarray, trace: list[str]) -> np.ndarray | None:
+        """The object visual feature of a query image, made by the map's visual encoder
+        (None, with a trace note, when that encoder cannot be loaded)."""
+        info = self.store.info
+        if self._encoder is None:
+            from inherit_sg.perception.registry import create_visual_encoder
+
+            perception = self.config.perception.model_copy(
+                update={"visual_encoder": info.visual_encoder}
+            )
+            try:
+                self._encoder = create_visual_encoder(
+                    self.config.model_copy(update={"perception": perception})
+                )
+            except InheritSGError as exc:
+                trace.append(f"query image ignored: {exc.message}")
+                return None
+        check_image(image, "query image")
+        whole = np.ones(image.shape[:2], dtype=bool)
+        feature = np.asarray(self._encoder.encode(image, [whole])[0], dtype=np.float32)
+        if feature.shape[0] != info.visual_dim:
+            trace.append(
+                f"query image ignored: feature size {feature.shape[0]} != map's {info.visual_dim}"
+            )
+            return None
+        trace.append(f"query image encoded by {info.visual_encoder} ({info.visual_dim}-d)")
+        return feature
+
+    def snapshot(self) -> tuple[MapSnapshot, GraphChecker]:
+        """The current snapshot (reloaded when the map changed) and its graph checker."""
+        version = map_version(self.store.path)
+        with self._lock:
+            if self._snap is None or self._snap.version != version:
+                self._snap = load_snapshot(self.store)
+                self._checker = GraphChecker(self._snap)
+            assert self._checker is not None
+            return self._snap, self._checker
+
+    # ---------------------------------------------------------------- steps
+    def parse(self, text: str, conversation: Conversation | None = None) -> ParsedQuery:
+        """Parse ``text`` and resolve it against the conversation history."""
+        parsed = self.parser.parse(text)
+        return conversation.resolve(parsed) if conversation is not None else parsed
+
+    def plan(self, parsed: ParsedQuery, snap: MapSnapshot | None = None) -> QueryPlan:
+        """The compiled plan of a parsed request (on ``snap``, default the current map)."""
+        snap = snap or self.snapshot()[0]
+        return Compiler(snap, self.similarity).compile(parsed)
+
+    def rank(
+        self,
+        plan: QueryPlan,
+        trace: list[str] | None = None,
+        view: tuple[MapSnapshot, GraphChecker] | None = None,
+    ) -> list[Scored]:
+        """Ranked target candidates of ``plan`` (landmarks resolved first)."""
+        snap, checker = view or self.snapshot()
+        gen = CandidateGenerator(self.store, snap, self.similarity)
+        scorer = Scorer(snap, checker)
+        log = trace if trace is not None else []
+
+        def evaluate(spec: NodeSpec) -> list[Scored]:
+            marks: dict[str, Landmarks] = {}
+            for key, sub in spec.landmarks.items():
+                marks[key] = landmark_quality(sub, evaluate(sub))
+                shown = ", ".join(
+                    f"{i} {getattr(snap.node(i), 'label', '')} q={q:.2f}" for i, q in marks[key][:5]
+                )
+                log.append(f"{sub.key}: {len(marks[key])} landmark candidates ({shown or 'none'})")
+            cands = gen.generate(spec, marks)
+            log.extend(cands.notes)
+            ranked, notes = scorer.score(spec, cands, marks)
+            log.extend(notes)
+            return ranked
+
+        return evaluate(plan.target)
+
+    # --------------------------------------------------------------- query
+    def query(
+        self,
+        text: str,
+        *,
+        conversation: Conversation | None = None,
+        verify: bool | None = None,
+        top_k: int | None = None,
+        explain: bool = False,
+        image: np.ndarray | None = None,
+    ) -> QueryResult:
+        """Answer one request. Raises QueryTextError for empty / over-long / non-text
+        input; a request with nothing to find answers null with the reason in the trace.
+        ``image`` (RGB uint8) is a picture of the sought object: its visual feature joins
+        the plan (object_visual index) and adds an appearance term to the score."""
+        start = time.perf_counter()
+        parsed = self.parse(text, conversation)
+        timings = {"parse": _ms(start), "retrieve": 0.0, "verify": 0.0}
+        trace = describe_query(parsed)
+        k = top_k or self.config.retrieval.top_k
+        t1 = time.perf_counter()
+        view = self.snapshot()
+        snap = view[0]
+        result = QueryResult(query=parsed.text, answer=None, constraints=parsed.to_dict())
+        if not parsed.has_target:
+            trace.append(f"no answer: {parsed.no_target_reason or 'the request names nothing'}")
+            return self._finish(result, trace, timings, start)
+        feature = self.image_feature(image, trace) if image is not None else None
+        plan = Compiler(snap, self.similarity).compile(parsed, feature)
+        ranked = self.rank(plan, trace, view)
+        trace.extend(explain_ranking(snap, ranked, k))
+        timings["retrieve"] = _ms(t1)
+        t2 = time.perf_counter()
+        do_verify = self.config.retrieval.verify if verify is None else verify
+        live = ranked if _answerable(plan.target, ranked) else []
+        chosen, verified = self._choose(snap, plan.target, live, text, do_verify, trace)
+        timings["verify"] = _ms(t2)
+        if chosen is not None:
+            result.answer = {
+                **node_summary(snap, chosen.id),
+                "score": round(chosen.score, 4),
+                "verified": verified,
+            }
+            trace.append(f"answer: {chosen.id} {result.answer['label']} (S={chosen.score:.2f})")
+        elif ranked:
+            trace.append("no answer: no candidate meets any of the requested constraints")
+        else:
+            trace.append(f"no answer: nothing in the map matches {parsed.target.describe()!r}")
+        if conversation is not None:
+            ids = tuple(c.id for c in ranked[:k])
+            conversation.add_turn(parsed, chosen.id if chosen else None, ids)
+        result.candidates = [candidate_dict(snap, c) for c in ranked[:k]]
+        result.explain = plan.explain() if explain else None
+        return self._finish(result, trace, timings, start)
+
+    @staticmethod
+    def _finish(
+        result: QueryResult, trace: list[str], timings: dict[str, float], start: float
+    ) -> QueryResult:
+        result.trace = trace
+        result.timings_ms = {**timings, "total": _ms(start)}
+        return result
+
+    # -------------------------------------------------------------- verify
+    def _choose(
+        self,
+        snap: MapSnapshot,
+        spec: NodeSpec,
+        ranked: list[Scored],
+        text: str,
+        verify: bool,
+        trace: list[str],
+    ) -> tuple[Scored | None, bool | None]:
+        """The answer: the first of the top ``verify_depth`` candidates that passes
+        visual verification (the top one, unverified, when verification is off or none
+        passes)."""
+        if not ranked:
+            return None, None
+        if not verify:
+            return ranked[0], None
+        depth = self.config.retrieval.verify_depth
+        segmenter = self._get_segmenter(trace)
+        for cand in ranked[:depth]:
+            node = snap.objects.get(cand.id)
+            if node is None:
+                trace.append(f"verify {cand.id}: not an object, nothing to check visually")
+                return cand, None
+            ev = self._evidence(snap, node, spec, cand, text)
+            prompts = [node.label, *sorted(ev.wanted_labels() - {node.label})][:4]
+            found, why, box = ground(ev, segmenter, prompts)
+            if found is None:
+                trace.append(f"verify {cand.id}: unverified ({why}); kept")
+                return cand, None
+            if not found:
+                trace.append(f"verify {cand.id}: rejected ({why}); trying the next candidate")
+                continue
+            verdict = self.verifier.verify(ev, box)
+            if verdict.ok is False:
+                trace.append(
+                    f"verify {cand.id}: rejected by {self.verifier.name} ({verdict.reason})"
+                )
+                continue
+            trace.append(f"verify {cand.id}: confirmed ({why}; {verdict.reason})")
+            return cand, verdict.ok
+        trace.append(
+            f"verify: none of the top {min(depth, len(ranked))} passed; answering the "
+            "best-ranked candidate unverified"
+        )
+        return ranked[0], False
+
+    def _evidence(
+        self, snap: MapSnapshot, node: ObjectNode, spec: NodeSpec, cand: Scored, text: str
+    ) -> Evidence:
+        ev = Evidence(node=node, spec=spec, scored=cand, request=text)
+        kf_id = node.best_keyframe or (node.keyframe_ids[-1] if node.keyframe_ids else None)
+        if kf_id is None:
+            return ev
+        try:
+            ev.keyframe = self.store.get_keyframe(kf_id, with_image=True)
+        except NodeNotFoundError:
+            return ev
+        ev.detection = dict(snap.seen_in.get((node.id, kf_id), {}))
+        if ev.keyframe.jpeg:
+            ev.image = decode_jpeg(ev.keyframe.jpeg)
+        return ev

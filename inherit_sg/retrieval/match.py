@@ -1,0 +1,175 @@
+"""Resolve word constraints against the map's vocabulary, once per request.
+
+A label, function, room or area constraint is compared with the labels present in the
+map, not with every node: a map has a few dozen distinct labels but thousands of
+objects. The result (:data:`Matches`) maps a map label (objects) or a node id (rooms,
+areas) to ``(similarity, reason)``; nodes absent from it have similarity 0.
+
+Exact matches go through the lexicon's canonical labels and room types ("couch" and
+"sofa" are both ``sofa``); everything else falls back to embedding similarity, graded
+so that only close phrases count.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from inherit_sg.retrieval.constraints import (
+    AreaConstraint,
+    Constraint,
+    FunctionConstraint,
+    LabelConstraint,
+    RoomConstraint,
+)
+from inherit_sg.retrieval.rules.tagger import room_type
+from inherit_sg.retrieval.similarity import (
+    LABEL_COS_HI,
+    LABEL_COS_LO,
+    TEXT_COS_HI,
+    TEXT_COS_LO,
+    PhraseSimilarity,
+    graded,
+)
+from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
+
+Matches = dict[str, tuple[float, str]]
+
+# Function kinds are listed most likely first; each later kind scores this much less.
+FUNCTION_RANK_STEP = 0.08
+FUNCTION_MIN = 0.6
+# Kinds a function phrase merely resembles count at most this much.
+FUNCTION_SEMANTIC_MAX = 0.5
+# Labels that only resemble the requested one count at most this much.
+LABEL_SEMANTIC_MAX = 0.8
+# A kind of the requested thing by its name ("dining table" for "table").
+HYPONYM = 0.9
+# Weaker resemblance than this is ignored.
+MIN_MATCH = 0.1
+
+
+def _clean(text: str) -> str:
+    return re.sub(r"\s+\d+$", "", text.strip().lower())
+
+
+def _semantic(
+    out: Matches,
+    queries: list[str],
+    keys: list[str],
+    texts: list[str],
+    sim: PhraseSimilarity,
+    scale: float,
+    lo: float = LABEL_COS_LO,
+    hi: float = LABEL_COS_HI,
+) -> None:
+    """Add graded embedding matches for ``keys`` not matched exactly yet."""
+    todo = [(k, t) for k, t in zip(keys, texts, strict=True) if k not in out and t]
+    queries = [q for q in dict.fromkeys(queries) if q]
+    if not todo or not queries:
+        return
+    distinct = list(dict.fromkeys(t for _, t in todo))  # many rooms / areas share a label
+    cos = sim.matrix(queries, distinct)
+    best = cos.argmax(axis=0)
+    top = cos[best, np.arange(len(distinct))]
+    values = graded(top, lo, hi) * scale
+    found = {
+        text: (float(values[j]), f"'{text}' resembles '{queries[best[j]]}' (cos {top[j]:.2f})")
+        for j, text in enumerate(distinct)
+        if values[j] >= MIN_MATCH
+    }
+    for key, text in todo:
+        if text in found:
+            out[key] = found[text]
+
+
+def is_kind_of(label: str, general: str) -> bool:
+    """Whether ``label`` names a kind of ``general`` by its head noun: "dining table"
+    and "table", "bookshelf" and "shelf" (a compound with at least three more letters)."""
+    label, general = label.lower().strip(), general.lower().strip()
+    if not general or label == general:
+        return False
+    if label.endswith(" " + general):
+        return True
+    return " " not in general and label.endswith(general) and len(label) - len(general) >= 3
+
+
+def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
+    wanted = set(con.labels)
+    out: Matches = {}
+    labels = sorted(snap.raw_labels())
+    for label in labels:
+        canon = canonical_labels(label)
+        hit = wanted.intersection(canon)
+        if hit:
+            out[label] = (1.0, f"label '{label}' is a {sorted(hit)[0]}")
+            continue
+        kind = next((w for w in sorted(wanted) for c in (label, *canon) if is_kind_of(c, w)), None)
+        if kind is not None:
+            out[label] = (HYPONYM, f"a {label} is a kind of {kind}")
+    _semantic(out, [*con.labels, con.noun], labels, labels, sim, LABEL_SEMANTIC_MAX)
+    return out
+
+
+def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
+    rank = {k: i for i, k in enumerate(con.labels)}
+    out: Matches = {}
+    labels = sorted(snap.raw_labels())
+    for label in labels:
+        ranks = [rank[c] for c in canonical_labels(label) if c in rank]
+        if ranks:
+            value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * min(ranks))
+            out[label] = (value, f"a {label} serves '{con.function}'")
+    _semantic(
+        out, [con.function], labels, labels, sim, FUNCTION_SEMANTIC_MAX, TEXT_COS_LO, TEXT_COS_HI
+    )
+    return out
+
+
+def _rooms(
+    words: list[str], rtype: str | None, snap: MapSnapshot, sim: PhraseSimilarity
+) -> Matches:
+    out: Matches = {}
+    for rid, have in snap.room_types.items():
+        if rtype is not None and have == rtype:
+            out[rid] = (1.0, f"room {rid} is a {rtype}")
+    if not out:  # no room of that type: rooms whose label resembles the words
+        ids = sorted(snap.rooms)
+        _semantic(out, words, ids, [snap.rooms[r].label.lower() for r in ids], sim, 1.0)
+    return out
+
+
+def _areas(words: list[str], snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
+    wanted = {_clean(w) for w in words if w}
+    out: Matches = {}
+    for aid, area in snap.areas.items():
+        if _clean(area.label) in wanted:
+            out[aid] = (1.0, f"area {aid} is a {area.label}")
+    ids = sorted(snap.areas)
+    _semantic(out, list(wanted), ids, [snap.areas[a].label.lower() for a in ids], sim, 1.0)
+    return out
+
+
+def resolve_matches(
+    con: Constraint, layer: str, snap: MapSnapshot, sim: PhraseSimilarity
+) -> Matches | None:
+    """What ``con`` matches in the map, or None for constraints checked per node."""
+    if isinstance(con, LabelConstraint):
+        if layer == "object":
+            return _object_labels(con, snap, sim)
+        words = [_clean(w) for w in (*con.labels, con.noun) if w]
+        if layer == "room":
+            return _rooms(
+                words, next((room_type(w) for w in words if room_type(w)), None), snap, sim
+            )
+        if layer == "area":
+            return _areas(words, snap, sim)
+        return None
+    if isinstance(con, FunctionConstraint):
+        return _function_labels(con, snap, sim) if layer == "object" else None
+    if isinstance(con, RoomConstraint):
+        words = [_clean(w) for w in (con.type or "", con.name) if w]
+        return _rooms(words, con.type, snap, sim)
+    if isinstance(con, AreaConstraint):
+        return _areas([con.label], snap, sim)
+    return None

@@ -1,0 +1,432 @@
+"""Compile a :class:`ParsedQuery` into an inspectable :class:`QueryPlan`.
+
+A plan has one :class:`NodeSpec` per thing to find: the target, and every relation's
+landmark (recursively, for chains). Compiling resolves the request against the map:
+the floor words become the levels of the hard filter ``H_floor``, label and function
+words become the map labels they match (exactly through the lexicon, or by embedding
+similarity), room and area phrases become the rooms and areas they name. Each spec then
+gets ordered :class:`Step` s — candidate generation by Cypher over the public tables,
+vector-index and full-text fallbacks, HAS_* / RELATION traversals, scoring — that
+:mod:`inherit_sg.retrieval.candidates` and :mod:`inherit_sg.retrieval.scoring` execute.
+``--explain`` prints them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from inherit_sg.mapping.relations import NEAR_GAP
+from inherit_sg.retrieval.constraints import (
+    AreaConstraint,
+    Constraint,
+    FloorConstraint,
+    FunctionConstraint,
+    LabelConstraint,
+    Landmark,
+    RelationConstraint,
+    RoomConstraint,
+    Superlative,
+    Target,
+)
+from inherit_sg.retrieval.lexicon_functions import FUNCTIONS
+from inherit_sg.retrieval.match import Matches, resolve_matches
+from inherit_sg.retrieval.query import ParsedQuery, describe
+from inherit_sg.retrieval.similarity import PhraseSimilarity
+from inherit_sg.retrieval.snapshot import MapSnapshot
+
+_LIVE = "coalesce(o.status, 'active') <> 'removed'"
+CYPHER_OBJECTS_BY_LABEL = f"MATCH (o:Object) WHERE o.label IN $labels AND {_LIVE} RETURN o.id"
+CYPHER_OBJECTS_IN_ROOMS = (
+    "MATCH (r:Room)-[:HAS_AREA]->(:Area)-[:HAS_OBJECT]->(o:Object) "
+    f"WHERE r.id IN $rooms AND {_LIVE} RETURN o.id"
+)
+CYPHER_OBJECTS_IN_AREAS = (
+    f"MATCH (a:Area)-[:HAS_OBJECT]->(o:Object) WHERE a.id IN $areas AND {_LIVE} RETURN o.id"
+)
+CYPHER_OBJECTS_ON_FLOORS = f"MATCH (o:Object) WHERE o.floor_id IN $floors AND {_LIVE} RETURN o.id"
+CYPHER_ALL_OBJECTS = f"MATCH (o:Object) WHERE {_LIVE} RETURN o.id"
+CYPHER_RELATED_OBJECTS = (
+    "MATCH (l:Object)-[:RELATION]-(o:Object) "
+    f"WHERE l.id IN $landmarks AND {_LIVE} RETURN DISTINCT o.id"
+)
+CYPHER_LAYER = {
+    "room": "MATCH (n:Room) RETURN n.id",
+    "area": "MATCH (n:Area) RETURN n.id",
+    "floor": "MATCH (n:Floor) RETURN n.id",
+}
+# The score term of a query image (weighted like a relation: strong, but not the name).
+IMAGE_TERM = "image"
+IMAGE_WEIGHT = 0.8
+VECTOR_INDEX = {"object": "object_text", "area": "area_text", "room": "room_text"}
+FULLTEXT_TABLE = {"object": "Object", "area": "Area", "room": "Room"}
+
+
+@dataclass(frozen=True)
+class Step:
+    """One executable, printable step of a plan.
+
+    ``op`` is one of ``pinned``, ``cypher``, ``neighbours`` (the landmark's RELATION
+    neighbourhood), ``vector``, ``fulltext`` (candidate generation; ``fallback`` ones
+    run only when the steps before found nothing),
+    ``floor`` (the hard filter), ``traverse`` (a constraint checked by walking HAS_*
+    edges), ``relation`` (a GraphRAG check against a landmark), ``score`` and
+    ``superlative``.
+    """
+
+    op: str
+    spec: str
+    text: str
+    cypher: str | None = None
+    params: dict[str, Any] = field(default_factory=dict)
+    index: str | None = None
+    query_text: str | None = None
+    fallback: bool = False
+    constraint: str | None = None
+
+    def render(self) -> str:
+        """One or two lines for ``--explain``."""
+        head = f"[{self.spec}] {self.op}{' (fallback)' if self.fallback else ''}: {self.text}"
+        if self.cypher:
+            shown = {
+                k: (v if len(str(v)) < 160 else f"{str(v)[:157]}...")
+                for k, v in self.params.items()
+            }
+            head += f"\n      cypher: {self.cypher}  params={shown}"
+        if self.index:
+            head += f"\n      index: {self.index}  text={self.query_text!r}"
+        return head
+
+
+@dataclass
+class NodeSpec:
+    """What to find for the target or one landmark, resolved against the map."""
+
+    key: str
+    layer: str
+    target: Target
+    constraints: tuple[Constraint, ...]
+    floor: FloorConstraint | None = None
+    levels: frozenset[int] | None = None
+    matches: dict[str, Matches] = field(default_factory=dict)
+    landmarks: dict[str, NodeSpec] = field(default_factory=dict)
+    exclude_ids: tuple[str, ...] = ()
+    steps: list[Step] = field(default_factory=list)
+    image: np.ndarray | None = None  # visual feature of a query image (the target only)
+
+    @property
+    def phrase(self) -> str:
+        """Words that name the node, for vector and full-text search."""
+        words = [*self.target.attributes, self.target.noun or " ".join(self.target.labels)]
+        text = " ".join(w for w in words if w).strip()
+        return text or (self.target.function or "")
+
+    def scored(self) -> list[Constraint]:
+        """Constraints that contribute a term to the score (all but the floor)."""
+        return [c for c in self.constraints if not isinstance(c, FloorConstraint)]
+
+    def max_score(self) -> float:
+        """The largest score a node can reach: the sum of positive weights."""
+        return sum(c.weight for c in self.scored() if not c.negated) or 1.0
+
+
+@dataclass
+class QueryPlan:
+    """The compiled request: the target spec with its landmark specs."""
+
+    parsed: ParsedQuery
+    target: NodeSpec
+
+    @property
+    def steps(self) -> list[Step]:
+        """All steps in execution order (landmarks before what depends on them)."""
+        out: list[Step] = []
+
+        def visit(spec: NodeSpec) -> None:
+            for sub in spec.landmarks.values():
+                visit(sub)
+            out.extend(spec.steps)
+
+        visit(self.target)
+        return out
+
+    def explain(self) -> str:
+        """The plan as numbered lines."""
+        lines = [f"plan for: {self.parsed.text!r}"]
+        lines += [f"  {i:2d}. {s.render()}" for i, s in enumerate(self.steps, start=1)]
+        return "\n".join(lines)
+
+
+def resolve_levels(con: FloorConstraint, levels: list[int]) -> frozenset[int]:
+    """The floor levels ``con`` allows on a map with ``levels`` (complement if negated)."""
+    if not levels:
+        return frozenset()
+    if con.level is not None:
+        chosen = {con.level}
+    elif con.relative == "upstairs":
+        chosen = {lv for lv in levels if lv > levels[0]}
+    elif con.relative == "top":
+        chosen = {levels[-1]}
+    else:  # downstairs, bottom
+        chosen = {levels[0]}
+    return frozenset(set(levels) - chosen if con.negated else chosen & set(levels))
+
+
+def implied_constraints(
+    key: str, target: Target, cons: tuple[Constraint, ...]
+) -> tuple[Constraint, ...]:
+    """Label / function constraints the target names but the list lacks (a landmark's
+    own noun lives only in its target)."""
+    out: list[Constraint] = []
+    kinds = {c.kind for c in cons if not c.negated}
+    prefix = "" if key == "target" else f"{key}."
+    if target.labels and not kinds & {"label", "function"}:
+        out.append(
+            LabelConstraint(
+                id=f"{prefix}label", labels=target.labels, noun=target.noun, text=target.noun
+            )
+        )
+    if target.function and "function" not in kinds and not target.labels:
+        serving = [k for name, _, _, ks in FUNCTIONS if name == target.function for k in ks]
+        out.append(
+            FunctionConstraint(
+                id=f"{prefix}function",
+                function=target.function,
+                labels=tuple(dict.fromkeys(serving)),
+                weight=0.9,
+                text=target.function,
+            )
+        )
+    return tuple(out)
+
+
+class Compiler:
+    """Turns parsed requests into plans for one map snapshot."""
+
+    def __init__(self, snap: MapSnapshot, sim: PhraseSimilarity) -> None:
+        self.snap = snap
+        self.sim = sim
+
+    def compile(self, parsed: ParsedQuery, image: np.ndarray | None = None) -> QueryPlan:
+        """The plan of ``parsed`` (which must have a target); ``image`` is the visual
+        feature of a picture that came with the request (objects only)."""
+        spec = self._spec("target", parsed.target, parsed.constraints, parsed.exclude_ids)
+        if image is not None and spec.layer == "object":
+            spec.image = image
+            at = next(i for i, s in enumerate(spec.steps) if s.fallback or s.op != "cypher")
+            spec.steps.insert(
+                at,
+                Step(
+                    "visual",
+                    spec.key,
+                    "objects that look most like the query image",
+                    index="object_visual",
+                    query_text="<query image>",
+                ),
+            )
+            spec.steps.insert(
+                len(spec.steps) - 1,
+                Step(
+                    "traverse",
+                    spec.key,
+                    f"{IMAGE_TERM}: appearance, cosine of the image's and "
+                    "the candidate's visual features",
+                    constraint=IMAGE_TERM,
+                ),
+            )
+        return QueryPlan(parsed=parsed, target=spec)
+
+    def _landmark(self, key: str, lm: Landmark) -> NodeSpec:
+        return self._spec(key, lm.target, lm.constraints, ())
+
+    def _spec(
+        self, key: str, target: Target, cons: tuple[Constraint, ...], exclude: tuple[str, ...]
+    ) -> NodeSpec:
+        cons = (*implied_constraints(key, target, cons), *cons)
+        floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
+        spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
+        if floor is not None:
+            spec.levels = resolve_levels(floor, self.snap.levels)
+        for con in cons:
+            if isinstance(con, RelationConstraint):
+                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark)
+                if con.landmark2 is not None:
+                    spec.landmarks[f"{con.id}/2"] = self._landmark(
+                        f"{con.id}.landmark2", con.landmark2
+                    )
+            elif isinstance(con, Superlative) and con.landmark is not None:
+                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark)
+            found = resolve_matches(con, spec.layer, self.snap, self.sim)
+            if found is not None:
+                spec.matches[con.id] = found
+        spec.steps = self._steps(spec)
+        return spec
+
+    # ------------------------------------------------------------------ steps
+    def _steps(self, spec: NodeSpec) -> list[Step]:
+        steps = self._generation(spec)
+        if spec.floor is not None:
+            levels = sorted(spec.levels or ())
+            steps.append(
+                Step(
+                    "floor",
+                    spec.key,
+                    f"H_floor: keep nodes on levels {levels} "
+                    f"({describe(spec.floor)}); all floors if none is left",
+                    constraint=spec.floor.id,
+                )
+            )
+        for con in spec.scored():
+            steps.append(self._constraint_step(spec, con))
+        steps.append(
+            Step(
+                "score",
+                spec.key,
+                "S(n) = H_floor · Σ p_i · w_i · Sim(n, c_i) over "
+                + ", ".join(f"{c.id}({c.kind})" for c in spec.scored()),
+            )
+        )
+        return steps
+
+    def _generation(self, spec: NodeSpec) -> list[Step]:
+        key, target = spec.key, spec.target
+        if target.node_ids:
+            ids = list(target.node_ids)
+            return [Step("pinned", key, f"the node(s) named by the conversation: {ids}")]
+        if spec.layer != "object":
+            labels = self._label_values(spec)
+            text = f"every {spec.layer}" + (f", scored against {labels}" if labels else "")
+            steps = [Step("cypher", key, text, CYPHER_LAYER[spec.layer])]
+            return [*steps, *self._text_steps(spec)]
+        labels = self._label_values(spec)
+        if labels:
+            steps = [
+                Step(
+                    "cypher",
+                    key,
+                    f"objects labelled {labels}",
+                    CYPHER_OBJECTS_BY_LABEL,
+                    {"labels": labels},
+                )
+            ]
+            return [*steps, *self._text_steps(spec)]
+        if target.labels or target.function:  # named, but no map label matches the name
+            return self._text_steps(spec)
+        return [self._scope_step(spec), *self._text_steps(spec)]
+
+    def _label_values(self, spec: NodeSpec) -> list[str]:
+        """Map labels (objects) or node ids (rooms, areas) matching the positive label
+        and function constraints."""
+        keys: set[str] = set()
+        for con in spec.constraints:
+            if isinstance(con, LabelConstraint | FunctionConstraint) and not con.negated:
+                keys |= set(spec.matches.get(con.id, {}))
+        return sorted(keys)
+
+    def _text_steps(self, spec: NodeSpec) -> list[Step]:
+        phrase = spec.phrase
+        if not phrase or spec.layer == "floor":
+            return []
+        return [
+            Step(
+                "vector",
+                spec.key,
+                f"nearest {spec.layer} texts to the phrase",
+                index=VECTOR_INDEX[spec.layer],
+                query_text=phrase,
+                fallback=True,
+            ),
+            Step(
+                "fulltext",
+                spec.key,
+                f"full-text match on {FULLTEXT_TABLE[spec.layer]}",
+                index=FULLTEXT_TABLE[spec.layer],
+                query_text=phrase,
+                fallback=True,
+            ),
+        ]
+
+    def _scope_step(self, spec: NodeSpec) -> Step:
+        for con in spec.constraints:  # "something on the table": the landmark's neighbours
+            if isinstance(con, RelationConstraint) and not con.negated and spec.layer == "object":
+                return Step(
+                    "neighbours",
+                    spec.key,
+                    f"objects joined by RELATION edges to (or within {NEAR_GAP} m of) the "
+                    f"candidates of {spec.landmarks[con.id].key}",
+                    CYPHER_RELATED_OBJECTS,
+                    {"landmarks": f"<candidates of {spec.landmarks[con.id].key}>"},
+                    constraint=con.id,
+                )
+        for con in spec.constraints:
+            if con.negated:
+                continue
+            if isinstance(con, RoomConstraint) and spec.matches.get(con.id):
+                rooms = sorted(spec.matches[con.id])
+                return Step(
+                    "cypher",
+                    spec.key,
+                    f"objects in rooms {rooms} (HAS_AREA/HAS_OBJECT)",
+                    CYPHER_OBJECTS_IN_ROOMS,
+                    {"rooms": rooms},
+                )
+            if isinstance(con, AreaConstraint) and spec.matches.get(con.id):
+                areas = sorted(spec.matches[con.id])
+                return Step(
+                    "cypher",
+                    spec.key,
+                    f"objects in areas {areas} (HAS_OBJECT)",
+                    CYPHER_OBJECTS_IN_AREAS,
+                    {"areas": areas},
+                )
+        if spec.levels:
+            floors = sorted(f for f, n in self.snap.floors.items() if n.level in spec.levels)
+            return Step(
+                "cypher",
+                spec.key,
+                f"objects on floors {floors}",
+                CYPHER_OBJECTS_ON_FLOORS,
+                {"floors": floors},
+            )
+        return Step("cypher", spec.key, "every object", CYPHER_ALL_OBJECTS)
+
+    def _constraint_step(self, spec: NodeSpec, con: Constraint) -> Step:
+        what = describe(con)
+        if isinstance(con, RelationConstraint):
+            landmarks = [k for k in (con.id, f"{con.id}/2") if k in spec.landmarks]
+            names = " and ".join(spec.landmarks[k].key for k in landmarks)
+            return Step(
+                "relation",
+                spec.key,
+                f"{con.id} {what}: walk RELATION edges to "
+                f"candidates of {names} (box geometry where no edge)",
+                constraint=con.id,
+            )
+        if isinstance(con, Superlative):
+            return Step(
+                "superlative",
+                spec.key,
+                f"{con.id} {what}: rank the best-scoring tier",
+                constraint=con.id,
+            )
+        found = spec.matches.get(con.id)
+        detail = ""
+        if found:
+            best = sorted(found.items(), key=lambda kv: -kv[1][0])[:6]
+            detail = "; matches " + ", ".join(f"{k} ({s:.2f})" for k, (s, _) in best)
+        if isinstance(con, RoomConstraint | AreaConstraint):
+            return Step(
+                "traverse",
+                spec.key,
+                f"{con.id} {what}: walk HAS_OBJECT/HAS_AREA up to "
+                f"the candidate's {con.kind}{detail}",
+                constraint=con.id,
+            )
+        return Step(
+            "traverse",
+            spec.key,
+            f"{con.id} {what}: compare with node properties{detail}",
+            constraint=con.id,
+        )

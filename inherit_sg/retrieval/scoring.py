@@ -1,0 +1,319 @@
+"""Intent-weighted scoring (paper §III-D): ``S(n) = H_floor · Σ_i p_i · w_i · Sim(n, c_i)``.
+
+Every term is kept per candidate (:class:`Term`), so results and traces say why a node
+ranks where it does. ``Sim`` per constraint kind:
+
+- label / function: the map-label matches resolved by the plan (lexicon or embedding),
+  or the vector / full-text evidence of the candidate step;
+- attribute: the node's measured attributes (colour, material, size), else its
+  description; height words rank the candidates by box height;
+- room / area: the candidate's room / area (found by walking HAS_* edges) against the
+  rooms / areas the constraint matched;
+- relation: the GraphRAG check of :mod:`inherit_sg.retrieval.graph_checks`, weighted by
+  how well the landmark met its own constraints;
+- superlative: rank within the best-scoring tier (largest by box volume, tallest by box
+  height, closest / farthest to the landmark);
+- floor: the hard filter ``H_floor`` (all floors when nothing passes: global fallback).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from inherit_sg.model import ObjectNode, RoomNode
+from inherit_sg.perception.describer import size_class
+from inherit_sg.retrieval.candidates import Candidates
+from inherit_sg.retrieval.constraints import (
+    AttributeConstraint,
+    Constraint,
+    FunctionConstraint,
+    LabelConstraint,
+    RelationConstraint,
+    Superlative,
+)
+from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
+from inherit_sg.retrieval.match import LABEL_SEMANTIC_MAX
+from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, NodeSpec
+from inherit_sg.retrieval.snapshot import MapSnapshot
+
+# A label / function similarity at least this strong means "is what was named" (exact,
+# a kind of it, a likely function kind), not merely "resembles it".
+STRONG_MATCH = 0.5
+# Candidates scoring within this of the best form the tier a superlative ranks.
+SUPERLATIVE_TIER = 0.05
+_WORD = re.compile(r"[a-z]+")
+
+
+@dataclass
+class Term:
+    """One constraint's contribution ``p · w · Sim`` to a candidate's score."""
+
+    cid: str
+    kind: str
+    weight: float
+    polarity: int
+    sim: float
+    why: str = ""
+
+    @property
+    def value(self) -> float:
+        """Signed contribution to the score."""
+        return self.polarity * self.weight * self.sim
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able form."""
+        return {
+            "kind": self.kind,
+            "weight": round(self.weight, 4),
+            "polarity": self.polarity,
+            "sim": round(self.sim, 4),
+            "term": round(self.value, 4),
+            "why": self.why,
+        }
+
+
+@dataclass
+class Scored:
+    """A candidate with its score terms."""
+
+    id: str
+    terms: dict[str, Term] = field(default_factory=dict)
+    h_floor: int = 1
+    found_by: list[str] = field(default_factory=list)
+
+    @property
+    def score(self) -> float:
+        """``H_floor · Σ terms``."""
+        return self.h_floor * sum(t.value for t in self.terms.values())
+
+    def sim(self, kind: str) -> float:
+        """Largest similarity among the positive terms of ``kind`` (0 when none)."""
+        return max(
+            (t.sim for t in self.terms.values() if t.kind == kind and t.polarity > 0), default=0.0
+        )
+
+
+def _named_sim(cand: Scored) -> float:
+    """How well the candidate is what was named (best positive label / function sim)."""
+    return max(
+        (t.sim for t in cand.terms.values() if t.polarity > 0 and t.kind in ("label", "function")),
+        default=0.0,
+    )
+
+
+def _rank_key(cand: Scored) -> tuple[float, float, str]:
+    """Best score first; among equals, the better label / function match; then by id."""
+    total, named = 0.0, 0.0
+    for t in cand.terms.values():
+        total += t.polarity * t.weight * t.sim
+        if t.polarity > 0 and t.kind in ("label", "function"):
+            named += t.sim
+    return (-cand.h_floor * total, -named, cand.id)
+
+
+def _words(text: str) -> set[str]:
+    return set(_WORD.findall(text.lower()))
+
+
+def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> tuple[float, str]:
+    """Sim of one attribute constraint from measured attributes, else the description."""
+    node = snap.node(node_id)
+    value = con.value.lower()
+    text = ""
+    if isinstance(node, ObjectNode):
+        have = node.attributes.get(con.key)
+        if isinstance(have, str) and have:
+            return (1.0 if have.lower() == value else 0.0), f"{con.key} is {have.lower()}"
+        text = node.description
+    elif node is not None:
+        text = getattr(node, "summary", "")
+    if value in _words(text):
+        return 1.0, f"description mentions '{value}'"
+    if con.key == "size" and isinstance(node, ObjectNode):
+        have = size_class(tuple(float(v) for v in node.bbox.size))  # type: ignore[arg-type]
+        return (1.0 if have == value else 0.0), f"box size is {have}"
+    return 0.0, f"no {con.key} '{value}' known"
+
+
+class Scorer:
+    """Scores candidates of a spec against a snapshot."""
+
+    def __init__(self, snap: MapSnapshot, checker: GraphChecker) -> None:
+        self.snap = snap
+        self.checker = checker
+
+    def score(
+        self, spec: NodeSpec, cands: Candidates, landmarks: dict[str, Landmarks]
+    ) -> tuple[list[Scored], list[str]]:
+        """Ranked candidates of ``spec`` and notes for the trace."""
+        notes: list[str] = []
+        out = [Scored(i, found_by=how) for i, how in cands.found_by.items()]
+        spatial = self._relations(spec, [c.id for c in out], landmarks)
+        scored = [c for c in spec.scored() if not isinstance(c, Superlative)]
+        for cand in out:
+            for con in scored:
+                if con.id in spatial:
+                    sim, why = spatial[con.id].get(cand.id, (0.0, ""))
+                else:
+                    sim, why = self._sim(spec, con, cand.id, cands)
+                cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, sim, why)
+            if spec.image is not None:
+                sim = cands.visual_sim.get(cand.id, 0.0)
+                why = f"appearance similarity {sim:.2f}"
+                cand.terms[IMAGE_TERM] = Term(IMAGE_TERM, "visual", IMAGE_WEIGHT, 1, sim, why)
+        self._heights(spec, out)
+        self._floor(spec, out, notes)
+        for sup in spec.scored():
+            if isinstance(sup, Superlative):
+                self._superlative(sup, out, landmarks.get(sup.id, ()), notes)
+        out.sort(key=_rank_key)
+        return out, notes
+
+    # ------------------------------------------------------------- per kind
+    def _sim(
+        self,
+        spec: NodeSpec,
+        con: Constraint,
+        node_id: str,
+        cands: Candidates,
+    ) -> tuple[float, str]:
+        snap = self.snap
+        if isinstance(con, LabelConstraint | FunctionConstraint):
+            node = snap.node(node_id)
+            key = node.label if isinstance(node, ObjectNode) else node_id
+            sim, why = spec.matches.get(con.id, {}).get(key, (0.0, ""))
+            text = cands.text_sim.get(node_id, 0.0) * LABEL_SEMANTIC_MAX
+            if text > sim and not con.negated:
+                return text, "found by text search"
+            return sim, why or f"label '{getattr(node, 'label', '')}' does not match"
+        if con.kind in ("room", "area"):
+            place = (snap.room_of if con.kind == "room" else snap.area_of).get(node_id)
+            if place is None:
+                return 0.0, f"not in any {con.kind}"
+            hit = spec.matches.get(con.id, {}).get(place)
+            if hit is not None:
+                return hit
+            node = snap.rooms.get(place) or snap.areas.get(place)
+            return 0.0, f"in {place} ({node.label if node is not None else '?'})"
+        if isinstance(con, AttributeConstraint):
+            return attribute_sim(snap, node_id, con)
+        return 0.0, f"{con.kind} is not scored"
+
+    def _relations(
+        self, spec: NodeSpec, ids: list[str], landmarks: dict[str, Landmarks]
+    ) -> dict[str, dict[str, tuple[float, str]]]:
+        """GraphRAG checks of every relation constraint for all candidates at once."""
+        out: dict[str, dict[str, tuple[float, str]]] = {}
+        for con in spec.scored():
+            if not isinstance(con, RelationConstraint):
+                continue
+            first = landmarks.get(con.id, ())
+            if con.predicate == "between":
+                second = landmarks.get(f"{con.id}/2", ())
+                out[con.id] = self.checker.between_all(ids, first, second)
+            else:
+                out[con.id] = self.checker.relation_all(ids, con.predicate, first)
+        return out
+
+    def _heights(self, spec: NodeSpec, out: list[Scored]) -> None:
+        """Height words without a stated height: rank candidates by box height."""
+        if not any(isinstance(c, AttributeConstraint) and c.key == "height" for c in spec.scored()):
+            return
+        heights = {c.id: self._height(c.id) for c in out}
+        known = [h for h in heights.values() if h is not None]
+        if not known:
+            return
+        lo, hi = min(known), max(known)
+        for con in spec.scored():
+            if not (isinstance(con, AttributeConstraint) and con.key == "height"):
+                continue
+            for cand in out:
+                term, h = cand.terms[con.id], heights[cand.id]
+                if term.sim > 0.0 or h is None:
+                    continue
+                rel = 1.0 if hi - lo < 1e-6 else (h - lo) / (hi - lo)
+                term.sim = rel if con.value == "tall" else 1.0 - rel
+                term.why = f"box height {h:.2f} m among {lo:.2f}–{hi:.2f} m"
+
+    def _height(self, node_id: str) -> float | None:
+        node = self.snap.node(node_id)
+        return float(node.bbox.size[2]) if isinstance(node, ObjectNode) else None
+
+    def _floor(self, spec: NodeSpec, out: list[Scored], notes: list[str]) -> None:
+        """Apply H_floor. When no candidate on the allowed floors matches (is what was
+        named — a strong label or function match — or, for unnamed targets, scores
+        above zero) but candidates elsewhere do, the filter is lifted: the global
+        fallback."""
+        if spec.levels is None:
+            return
+        for cand in out:
+            cand.h_floor = int(self.snap.level_of(cand.id) in spec.levels)
+        named = any(c.kind in ("label", "function") and not c.negated for c in spec.scored())
+
+        def matches(c: Scored) -> bool:
+            return _named_sim(c) >= STRONG_MATCH if named else c.score > 0.0
+
+        if any(matches(c) for c in out if c.h_floor) or not any(matches(c) for c in out):
+            return
+        for cand in out:
+            cand.h_floor = 1
+        notes.append(
+            f"{spec.key}: nothing matching on levels {sorted(spec.levels)}; "
+            "floor filter lifted (global fallback)"
+        )
+
+    # ---------------------------------------------------------- superlative
+    def _measure(self, con: Superlative, node_id: str, landmarks: Landmarks) -> float | None:
+        node = self.snap.node(node_id)
+        if con.measure in ("largest", "smallest"):
+            if isinstance(node, ObjectNode):
+                return float(node.bbox.volume)
+            if isinstance(node, RoomNode) and node.mask is not None:
+                return node.mask.area_m2
+            return None
+        if con.measure in ("tallest", "shortest"):
+            return self._height(node_id)
+        if con.measure in ("closest", "farthest") and landmarks:
+            here = self.snap.position(node_id)
+            dists = [
+                math.dist(here, there)
+                for lid, _ in landmarks
+                if lid != node_id and here is not None and (there := self.snap.position(lid))
+            ]
+            return min(dists) if dists else None
+        return None
+
+    def _superlative(
+        self, con: Superlative, out: list[Scored], landmarks: Landmarks, notes: list[str]
+    ) -> None:
+        for cand in out:
+            cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, 0.0, "")
+        live = [c for c in out if c.h_floor]
+        if not live:
+            return
+        best = max(c.score for c in live)
+        tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
+        values = {c.id: self._measure(con, c.id, landmarks) for c in tier}
+        known = {k: v for k, v in values.items() if v is not None}
+        if not known:
+            notes.append(f"{con.id}: cannot rank by '{con.measure}' here (no measure known)")
+            return
+        want_max = con.measure in ("largest", "tallest", "farthest")
+        top = max(known.values()) if want_max else min(known.values())
+        for cand in tier:
+            v = known.get(cand.id)
+            if v is None:
+                continue
+            ratio = (v / top if top > 0 else 1.0) if want_max else (top / v if v > 0 else 1.0)
+            cand.terms[con.id].sim = float(min(1.0, ratio)) if v != top else 1.0
+            cand.terms[con.id].why = f"{con.measure}: {v:.3g} (best {top:.3g})"
+
+
+def landmark_quality(spec: NodeSpec, ranked: list[Scored], limit: int = 50) -> Landmarks:
+    """Landmark candidates with quality ``S(n) / max S`` in (0, 1], best first."""
+    top = spec.max_score()
+    out = [(c.id, min(1.0, c.score / top)) for c in ranked if c.h_floor and c.score > 0.0]
+    return out[:limit]

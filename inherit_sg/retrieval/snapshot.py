@@ -1,0 +1,212 @@
+"""An in-memory view of one map for answering requests, loaded once per map version.
+
+Requests read the hierarchy (object → area → room → floor), labels, boxes and RELATION
+edges many times each; fetching them from Kuzu per request would dominate latency. A
+:class:`MapSnapshot` holds them in plain dicts and numpy arrays and is rebuilt only when
+the map's files change (:func:`map_version`): the engine checks the version, a few
+``stat`` calls, before every request.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from inherit_sg.model import (
+    AreaNode,
+    EdgeKind,
+    FloorNode,
+    ObjectNode,
+    ObjectStatus,
+    RoomNode,
+    SceneGraph,
+)
+from inherit_sg.retrieval.rules.tagger import canonical_noun, room_type
+from inherit_sg.store import MapStore
+
+Version = tuple[int, ...]
+_VERSION_FILES = ("graph.kuzu", "graph.kuzu.wal", "map.json")
+
+
+def map_version(path: Path) -> Version:
+    """A cheap fingerprint of a map directory's files: size and modification time of
+    the graph file, its write-ahead log and ``map.json``. Every committed write changes
+    at least one of them."""
+    out: list[int] = []
+    for name in _VERSION_FILES:
+        try:
+            st = (path / name).stat()
+        except FileNotFoundError:
+            out += [-1, -1]
+        else:
+            out += [st.st_size, st.st_mtime_ns]
+    return tuple(out)
+
+
+def canonical_labels(label: str) -> tuple[str, ...]:
+    """Canonical lexicon labels of a map label ("couch" → ``("sofa",)``)."""
+    text = label.strip().lower()
+    return canonical_noun(text) if text else ()
+
+
+@dataclass
+class MapSnapshot:
+    """Nodes, hierarchy, relations and geometry of one map version."""
+
+    version: Version
+    graph: SceneGraph
+    objects: dict[str, ObjectNode] = field(default_factory=dict)
+    rooms: dict[str, RoomNode] = field(default_factory=dict)
+    areas: dict[str, AreaNode] = field(default_factory=dict)
+    floors: dict[str, FloorNode] = field(default_factory=dict)
+    room_of: dict[str, str | None] = field(default_factory=dict)
+    area_of: dict[str, str | None] = field(default_factory=dict)
+    floor_of: dict[str, str | None] = field(default_factory=dict)
+    canon: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    room_types: dict[str, str | None] = field(default_factory=dict)
+    relations: dict[str, dict[str, set[str]]] = field(default_factory=dict)
+    neighbours: dict[str, set[str]] = field(default_factory=dict)
+    adjacent: dict[str, set[str]] = field(default_factory=dict)
+    seen_in: dict[tuple[str, str], dict[str, Any]] = field(default_factory=dict)
+    # objects as arrays, row i = obj_ids[i]: box corners, centroid, floor level (-1: unknown)
+    obj_ids: list[str] = field(default_factory=list)
+    obj_index: dict[str, int] = field(default_factory=dict)
+    lo: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    hi: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    centre: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    level: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+
+    # ------------------------------------------------------------------ lookups
+    @property
+    def levels(self) -> list[int]:
+        """Floor levels present, lowest first."""
+        return sorted({f.level for f in self.floors.values()})
+
+    def level_of(self, node_id: str) -> int | None:
+        """Floor level of any node (None when unknown)."""
+        fid = self.floor_of.get(node_id)
+        floor = self.floors.get(fid) if fid else None
+        return floor.level if floor is not None else None
+
+    def node(self, node_id: str) -> ObjectNode | RoomNode | AreaNode | FloorNode | None:
+        """The node with ``node_id`` among the four layers (None when absent)."""
+        return (
+            self.objects.get(node_id)
+            or self.rooms.get(node_id)
+            or self.areas.get(node_id)
+            or self.floors.get(node_id)
+        )
+
+    def position(self, node_id: str) -> tuple[float, float, float] | None:
+        """Centroid of an object, area or room; a floor's is its rooms' mean."""
+        node = self.node(node_id)
+        if node is None:
+            return None
+        if isinstance(node, FloorNode):
+            pts = [r.position for r in self.rooms.values() if r.floor_id == node_id]
+            if not pts:
+                return (0.0, 0.0, node.z_min)
+            mean = np.mean(np.asarray(pts, dtype=float), axis=0)
+            return (float(mean[0]), float(mean[1]), float(mean[2]))
+        return tuple(float(v) for v in node.position)  # type: ignore[return-value]
+
+    def related(self, a: str, b: str) -> set[str]:
+        """Stored RELATION predicates from ``a`` to ``b``."""
+        return self.relations.get(a, {}).get(b, set())
+
+    def has_edge_between(self, a: str, b: str) -> bool:
+        """Whether any RELATION edge joins ``a`` and ``b`` (either direction)."""
+        return bool(self.related(a, b) or self.related(b, a))
+
+    def objects_labelled(self, labels: set[str]) -> list[str]:
+        """Ids of objects whose canonical labels meet ``labels``."""
+        return [i for i, c in self.canon.items() if labels.intersection(c)]
+
+    def raw_labels(self) -> set[str]:
+        """Distinct object labels as stored."""
+        return {o.label for o in self.objects.values()}
+
+
+def _relations(graph: SceneGraph) -> dict[str, dict[str, set[str]]]:
+    out: dict[str, dict[str, set[str]]] = defaultdict(lambda: defaultdict(set))
+    for edge in graph.edges(EdgeKind.RELATION):
+        predicate = str(edge.prop("predicate", "")).replace("_", " ").strip()
+        out[edge.src][edge.dst].add(predicate)
+        if predicate in ("next to", "near"):  # symmetric by meaning
+            out[edge.dst][edge.src].add(predicate)
+    return {k: dict(v) for k, v in out.items()}
+
+
+def _seen_in(graph: SceneGraph) -> dict[tuple[str, str], dict[str, Any]]:
+    """Detection records (pixel ``bbox``, ``label``, ``score``) per (object, keyframe)."""
+    return {(e.src, e.dst): e.prop_dict for e in graph.edges(EdgeKind.SEEN_IN)}
+
+
+def _index_objects(snap: MapSnapshot) -> None:
+    objs = list(snap.objects.values())
+    snap.obj_ids = [o.id for o in objs]
+    snap.obj_index = {oid: i for i, oid in enumerate(snap.obj_ids)}
+    snap.lo = np.array([o.bbox.min for o in objs], dtype=float).reshape(-1, 3)
+    snap.hi = np.array([o.bbox.max for o in objs], dtype=float).reshape(-1, 3)
+    snap.centre = np.array([o.position for o in objs], dtype=float).reshape(-1, 3)
+    levels = [snap.level_of(o.id) for o in objs]
+    snap.level = np.array([-1 if lv is None else lv for lv in levels], dtype=int)
+
+
+def build_snapshot(graph: SceneGraph, version: Version = ()) -> MapSnapshot:
+    """Index ``graph`` for retrieval (removed objects are left out)."""
+    snap = MapSnapshot(version=version, graph=graph)
+    for node in graph.nodes():
+        if isinstance(node, ObjectNode):
+            if node.status != ObjectStatus.REMOVED:
+                snap.objects[node.id] = node
+        elif isinstance(node, RoomNode):
+            snap.rooms[node.id] = node
+        elif isinstance(node, AreaNode):
+            snap.areas[node.id] = node
+        elif isinstance(node, FloorNode):
+            snap.floors[node.id] = node
+    for rid, room in snap.rooms.items():
+        snap.floor_of[rid] = room.floor_id or graph.parent(rid)
+        snap.room_types[rid] = room_type(room.label.lower()) if room.label else None
+        snap.room_of[rid] = rid
+    for aid, area in snap.areas.items():
+        parent_room: str | None = area.room_id or graph.parent(aid)
+        snap.room_of[aid] = parent_room
+        snap.area_of[aid] = aid
+        snap.floor_of[aid] = snap.floor_of.get(parent_room) if parent_room else None
+    for fid in snap.floors:
+        snap.floor_of[fid] = fid
+    for oid, obj in snap.objects.items():
+        area_id: str | None = obj.area_id or graph.parent(oid)
+        room_id = obj.room_id or (snap.room_of.get(area_id) if area_id else None)
+        snap.area_of[oid] = area_id
+        snap.room_of[oid] = room_id
+        snap.floor_of[oid] = obj.floor_id or (snap.floor_of.get(room_id) if room_id else None)
+        snap.canon[oid] = canonical_labels(obj.label)
+    _index_objects(snap)
+    snap.relations = _relations(graph)
+    adjacent: dict[str, set[str]] = defaultdict(set)
+    for src, dsts in snap.relations.items():
+        for dst in dsts:
+            adjacent[src].add(dst)
+            adjacent[dst].add(src)
+    snap.adjacent = dict(adjacent)
+    neighbours: dict[str, set[str]] = defaultdict(set)
+    for edge in graph.edges(EdgeKind.CONNECTS):
+        neighbours[edge.src].add(edge.dst)
+        neighbours[edge.dst].add(edge.src)
+    snap.neighbours = dict(neighbours)
+    snap.seen_in = _seen_in(graph)
+    return snap
+
+
+def load_snapshot(store: MapStore) -> MapSnapshot:
+    """Read the whole map once and index it (the version is taken before reading, so a
+    write racing with the read only causes one extra reload later)."""
+    version = map_version(store.path)
+    return build_snapshot(store.load_graph(), version)

@@ -1,0 +1,90 @@
+"""Compiling parsed requests into plans: floors, label matches, landmarks, steps."""
+
+from __future__ import annotations
+
+import pytest
+
+from inherit_sg.retrieval import FloorConstraint, parse_rules
+from inherit_sg.retrieval.match import is_kind_of
+from inherit_sg.retrieval.plan import (
+    CYPHER_OBJECTS_BY_LABEL,
+    CYPHER_OBJECTS_IN_ROOMS,
+    Compiler,
+    QueryPlan,
+    resolve_levels,
+)
+from tests.unit.retrieval_fixtures import hash_similarity, small_snapshot
+
+
+def compile_text(text: str) -> QueryPlan:
+    return Compiler(small_snapshot(), hash_similarity()).compile(parse_rules(text))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "levels", "expected"),
+    [
+        ({"level": 1}, [0, 1, 2], {1}),
+        ({"level": 5}, [0, 1], set()),
+        ({"relative": "upstairs"}, [0, 1, 2], {1, 2}),
+        ({"relative": "downstairs"}, [0, 1, 2], {0}),
+        ({"relative": "top"}, [0, 1, 2], {2}),
+        ({"relative": "bottom"}, [0, 1], {0}),
+        ({"level": 0, "negated": True}, [0, 1, 2], {1, 2}),
+    ],
+)
+def test_floor_words_resolve_to_levels(kwargs: dict, levels: list[int], expected: set[int]) -> None:
+    assert resolve_levels(FloorConstraint(**kwargs), levels) == expected
+
+
+def test_kind_of_by_head_noun() -> None:
+    assert is_kind_of("dining table", "table")
+    assert is_kind_of("bookshelf", "shelf")
+    assert is_kind_of("armchair", "chair")
+    assert not is_kind_of("table lamp", "table")
+    assert not is_kind_of("chair", "chair")
+    assert not is_kind_of("tv", "v")
+
+
+def test_plan_resolves_labels_and_landmarks() -> None:
+    plan = compile_text("the mug on the table next to the window")
+    target = plan.target
+    assert target.layer == "object"
+    label = next(c for c in target.constraints if c.kind == "label")
+    assert target.matches[label.id]["mug"][0] == 1.0
+    # the chain: mug -on-> table -next_to-> window, each landmark with its own spec
+    rel = next(c for c in target.constraints if c.kind == "relation")
+    table = target.landmarks[rel.id]
+    assert table.key == f"{rel.id}.landmark"
+    assert any(c.kind == "label" for c in table.constraints)  # implied by its noun
+    window = next(iter(table.landmarks.values()))
+    assert window.key == f"{rel.id}.1.landmark"  # nested ids: c2.1 is the table's relation
+    steps = plan.steps
+    # landmarks are planned (and executed) before what depends on them
+    assert steps.index(window.steps[0]) < steps.index(table.steps[0]) < steps.index(target.steps[0])
+    first = target.steps[0]
+    assert first.op == "cypher" and first.cypher == CYPHER_OBJECTS_BY_LABEL
+    assert "mug" in first.params["labels"]
+    text = plan.explain()
+    assert all(s.op != "floor" for s in steps)  # no floor constraint, no filter step
+    assert "relation on" in text and "cypher:" in text
+
+
+def test_plan_floor_filter_and_room_scope() -> None:
+    plan = compile_text("something to sit on in the kitchen on the ground floor")
+    target = plan.target
+    assert target.levels == frozenset({0})
+    ops = [s.op for s in target.steps]
+    assert "floor" in ops and ops[-1] == "score"
+    room = next(c for c in target.constraints if c.kind == "room")
+    assert set(target.matches[room.id]) == {"room:kitchen"}
+    plan = compile_text("take me to anything in the bedroom")
+    scope = plan.target.steps[0]
+    assert scope.cypher == CYPHER_OBJECTS_IN_ROOMS and scope.params == {"rooms": ["room:bedroom"]}
+
+
+def test_room_targets_match_room_nodes() -> None:
+    plan = compile_text("take me to the kitchen")
+    assert plan.target.layer == "room"
+    label = next(c for c in plan.target.constraints if c.kind == "label")
+    assert set(plan.target.matches[label.id]) == {"room:kitchen"}
+    assert plan.target.steps[0].cypher == "MATCH (n:Room) RETURN n.id"

@@ -1,0 +1,143 @@
+"""Visual verification: grounding on the SEEN_IN record, pixel colour checks on the
+crop, graph checks, the segmenter path and the VLM verifier's offline fallback."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import cv2
+import numpy as np
+import pytest
+
+from inherit_sg.config import LLMConfig
+from inherit_sg.llm.client import ChatClient
+from inherit_sg.model import Frame, Keyframe, ObjectNode, Pose
+from inherit_sg.perception.base import Detection, make_detection
+from inherit_sg.retrieval import parse_rules
+from inherit_sg.retrieval.plan import Compiler
+from inherit_sg.retrieval.scoring import Scored, Term
+from inherit_sg.retrieval.verify import (
+    Evidence,
+    OfflineVerifier,
+    central_crop,
+    decode_jpeg,
+    frame_from_image,
+    graph_failures,
+    ground,
+    recorded_box,
+)
+from inherit_sg.retrieval.verify_vlm import VlmVerifier, outlined
+from tests.unit.retrieval_fixtures import hash_similarity, small_snapshot
+
+EYE = Pose(tuple(float(v) for v in np.eye(4).ravel()))
+RED, BLUE, GREY = (190, 40, 40), (45, 80, 185), (128, 128, 128)
+
+
+def jpeg(colour: tuple[int, int, int], size: tuple[int, int] = (240, 320)) -> bytes:
+    """A grey picture with a coloured rectangle at x 100–200, y 60–180 (RGB)."""
+    img = np.full((*size, 3), GREY, dtype=np.uint8)
+    img[60:180, 100:200] = colour
+    ok, buf = cv2.imencode(".jpg", img[..., ::-1])
+    assert ok
+    return buf.tobytes()
+
+
+def evidence(
+    text: str, node_id: str, colour: tuple[int, int, int] | None, detection: dict | None = None
+) -> Evidence:
+    snap = small_snapshot()
+    spec = Compiler(snap, hash_similarity()).compile(parse_rules(text)).target
+    node = snap.objects[node_id]
+    assert isinstance(node, ObjectNode)
+    kf = Keyframe("kf:1", "s1", 0.0, EYE, width=320, height=240)
+    ev = Evidence(node=node, spec=spec, scored=Scored(node_id), request=text, keyframe=kf)
+    ev.detection = (
+        detection if detection is not None else {"label": node.label, "bbox": [100, 60, 199, 179]}
+    )
+    if colour is not None:
+        ev.image = decode_jpeg(jpeg(colour))
+    return ev
+
+
+def test_jpeg_decode_box_scaling_and_crop() -> None:
+    img = decode_jpeg(jpeg(RED, (480, 640)))
+    assert img is not None and img.shape == (480, 640, 3)
+    ev = evidence("the red chair", "obj:c3", RED)
+    assert ev.image is not None and ev.image.shape == (240, 320, 3)
+    ev.keyframe = Keyframe("kf:1", "s1", 0.0, EYE, width=640, height=480)  # box in 640x480
+    ev.detection = {"bbox": [200, 120, 398, 358]}
+    assert recorded_box(ev) == (100, 60, 199, 179)
+    crop = central_crop(ev.image, (100, 60, 199, 179))
+    assert crop.shape[0] == pytest.approx(60, abs=2) and crop.shape[1] == pytest.approx(50, abs=2)
+    assert decode_jpeg(b"not a jpeg") is None
+
+
+def test_offline_verifier_checks_colour_on_the_crop() -> None:
+    ev = evidence("the red chair", "obj:c3", RED)
+    ok, why, box = ground(ev, None, ["chair"])
+    assert ok is True and box == (100, 60, 199, 179) and "chair" in why
+    assert OfflineVerifier().verify(ev, box).ok is True
+    ev = evidence("the red chair", "obj:c3", BLUE)
+    verdict = OfflineVerifier().verify(ev, recorded_box(ev))
+    assert verdict.ok is False and "looks blue" in verdict.reason
+    ev = evidence("a chair that is not red", "obj:c3", RED)
+    assert OfflineVerifier().verify(ev, recorded_box(ev)).ok is False
+
+
+def test_grounding_needs_a_compatible_detection() -> None:
+    ev = evidence("the red chair", "obj:c3", RED, {"label": "table", "bbox": [1, 1, 5, 5]})
+    ok, why, _ = ground(ev, None, ["chair"])
+    assert ok is False and "table" in why
+    ev = evidence("the red chair", "obj:c3", RED, {})
+    assert ground(ev, None, ["chair"])[0] is None
+    ev.keyframe = None
+    assert ground(ev, None, ["chair"]) == (None, "no keyframe to verify against", None)
+
+
+def test_graph_failures_reject_unsupported_constraints() -> None:
+    ev = evidence("the chair next to the table", "obj:c2", None)
+    ev.scored.terms["c2"] = Term("c2", "relation", 0.8, 1, 0.0)
+    assert graph_failures(ev) == ["c2 (relation) not found in the graph"]
+    ev.scored.terms["c2"] = Term("c2", "relation", 0.8, -1, 1.0, "c2 -[near]-> t1")
+    assert "negated relation" in graph_failures(ev)[0]
+    ev.scored.terms["c2"] = Term("c2", "relation", 0.8, 1, 1.0)
+    assert graph_failures(ev) == []
+
+
+class BoxSegmenter:
+    """A real (if tiny) segmenter: thresholds saturated pixels of the picture."""
+
+    name = "saturation"
+
+    def segment(self, frame: Frame, prompts: Sequence[str] | None = None) -> list[Detection]:
+        rgb = frame.rgb.astype(int)
+        mask = (rgb.max(axis=2) - rgb.min(axis=2)) > 60
+        det = make_detection(mask, (prompts or ["object"])[0], 0.9)
+        return [det] if det is not None else []
+
+
+def test_segmenter_grounding_on_the_keyframe_image() -> None:
+    ev = evidence("the red chair", "obj:c3", RED)
+    ok, why, box = ground(ev, BoxSegmenter(), ["chair"])
+    assert ok is True and "saturation found chair" in why
+    assert box is not None and abs(box[0] - 100) <= 2 and abs(box[3] - 179) <= 2
+    ev = evidence("the red chair", "obj:c3", GREY)
+    assert ground(ev, BoxSegmenter(), ["chair"])[0] is False
+    frame = frame_from_image(np.zeros((8, 10, 3), np.uint8), "kf")
+    assert frame.validate().rgb.shape == (8, 10, 3)
+
+
+def test_vlm_verifier_falls_back_offline_when_the_endpoint_is_down() -> None:
+    client = ChatClient.from_config(
+        LLMConfig(endpoint="http://127.0.0.1:9", timeout_s=0.2, retries=0)
+    )
+    ev = evidence("the red chair", "obj:c3", BLUE)
+    verdict = VlmVerifier(client).verify(ev, recorded_box(ev))
+    assert verdict.ok is False and verdict.reason.startswith("VLM failed")
+    messages = VlmVerifier(client).messages(ev, (100, 60, 199, 179))
+    parts = messages[1]["content"]
+    assert "the red chair" in parts[0]["text"]
+    assert parts[1]["image_url"]["url"].startswith("data:image/jpeg;base64,")
+    assert ev.image is not None
+    drawn = outlined(ev.image, (10, 10, 50, 50))
+    assert tuple(drawn[10, 30]) == (0, 255, 0) and tuple(ev.image[10, 30]) != (0, 255, 0)
