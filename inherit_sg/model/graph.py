@@ -141,18 +141,22 @@ class SceneGraph:
     # ----------------------------------------------------------------- edges
     def add_edge(self, edge: Edge) -> bool:
         """Insert or replace an edge (same key). Both ends must exist unless the
-        destination is a keyframe (SEEN_IN). Returns True if new."""
+        destination is a keyframe (SEEN_IN). Returns True if new; an existing edge whose
+        properties change is logged in ``new_edges`` again so that it is re-persisted."""
         self.get(edge.src)
         if edge.kind is not EdgeKind.SEEN_IN:
             self.get(edge.dst)
         key = edge.key
-        is_new = key not in self._edges
+        previous = self._edges.get(key)
+        is_new = previous is None
         self._edges[key] = edge
         self._out[edge.src].add(key)
         self._in[edge.dst].add(key)
         if is_new:
             if key in self._changes.removed_edges:
                 self._changes.removed_edges.discard(key)
+            self._changes.new_edges.add(key)
+        elif previous != edge:  # same key, new properties: log it to be written again
             self._changes.new_edges.add(key)
         return is_new
 
@@ -228,3 +232,24 @@ class SceneGraph:
         """Return the accumulated changes and start a new log."""
         out, self._changes = self._changes, ChangeSet()
         return out
+
+    def restore_changes(self, changes: ChangeSet) -> None:
+        """Put back a flushed change set whose persistence failed, merged with whatever
+        changed since, so that the next flush includes it again."""
+        log = self._changes
+        for node_id in changes.new_nodes | changes.updated_nodes | changes.removed_nodes:
+            if node_id in self._nodes:
+                log.removed_nodes.discard(node_id)
+                if node_id in changes.new_nodes and node_id not in log.updated_nodes:
+                    log.new_nodes.add(node_id)
+                elif node_id not in log.new_nodes:
+                    log.updated_nodes.add(node_id)
+            else:
+                log.removed_nodes.add(node_id)
+        for key in changes.new_edges | changes.removed_edges:
+            if key in self._edges:
+                log.new_edges.add(key)
+                log.removed_edges.discard(key)
+            else:
+                log.new_edges.discard(key)
+                log.removed_edges.add(key)

@@ -1,0 +1,185 @@
+"""Keyframe images and global features in LanceDB (``lance/``, table ``keyframes``).
+
+lancedb is imported only inside these methods: opening a map for a Cypher query or
+``inherit-sg info`` never loads it, and the table is created with the first keyframe
+(an empty ``lance/`` folder is a map without keyframes). Rows are upserted by id (``merge_insert``), so a
+keyframe written twice is stored once. Searching is a flat scan below
+``INDEX_MIN_ROWS`` rows (a few ms at that size, and IVF needs rows to train on); once
+the table is larger an IVF_HNSW_SQ index (cosine) is built, later rows are still found
+by LanceDB's scan of unindexed data until ``optimize`` folds them in.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from datetime import timedelta
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from inherit_sg.errors import InputError
+from inherit_sg.model import Keyframe
+from inherit_sg.store.embeddings import as_vector
+
+if TYPE_CHECKING:
+    import pyarrow as pa
+
+TABLE = "keyframes"
+INDEX_MIN_ROWS = 10_000
+_COMPACT_AFTER_FRAGMENTS = 32
+
+
+def _quote(ids: Sequence[str]) -> str:
+    return ", ".join("'" + i.replace("'", "''") + "'" for i in ids)
+
+
+class KeyframeBlobs:
+    """The LanceDB side of keyframes: JPEG bytes and global feature by keyframe id."""
+
+    def __init__(self, path: Path, feature_dim: int, writable: bool) -> None:
+        self.path = path
+        self.feature_dim = feature_dim
+        self.writable = writable
+        self._table: Any = None
+
+    def schema(self) -> pa.Schema:
+        """Arrow schema of the ``keyframes`` table."""
+        import pyarrow as pa
+
+        return pa.schema(
+            [
+                pa.field("id", pa.string(), nullable=False),
+                pa.field("session_id", pa.string()),
+                pa.field("timestamp", pa.float64()),
+                pa.field("frame_index", pa.int64()),
+                pa.field("floor_id", pa.string()),
+                pa.field("pose", pa.list_(pa.float64(), 16)),
+                pa.field("width", pa.int32()),
+                pa.field("height", pa.int32()),
+                pa.field("jpeg", pa.binary()),
+                pa.field("feature", pa.list_(pa.float32(), self.feature_dim)),
+            ]
+        )
+
+    def _tbl(self) -> Any:
+        """The LanceDB table; created on first use when writable, None when absent."""
+        if self._table is None:
+            if not self.writable and not (self.path / f"{TABLE}.lance").exists():
+                return None
+            import lancedb
+
+            db = lancedb.connect(str(self.path))
+            self._table = db.create_table(TABLE, schema=self.schema(), exist_ok=True)
+        return self._table
+
+    def _rows(self, keyframes: Sequence[Keyframe]) -> pa.Table:
+        import pyarrow as pa
+
+        feats = [
+            as_vector(k.global_feature, self.feature_dim, f"global feature of keyframe {k.id}")
+            if k.global_feature is not None
+            else None
+            for k in keyframes
+        ]
+        return pa.table(
+            {
+                "id": [k.id for k in keyframes],
+                "session_id": [k.session_id for k in keyframes],
+                "timestamp": [float(k.timestamp) for k in keyframes],
+                "frame_index": [int(k.frame_index) for k in keyframes],
+                "floor_id": [k.floor_id for k in keyframes],
+                "pose": [list(k.pose.matrix16) for k in keyframes],
+                "width": [int(k.width) for k in keyframes],
+                "height": [int(k.height) for k in keyframes],
+                "jpeg": [k.jpeg for k in keyframes],
+                "feature": [f.tolist() if f is not None else None for f in feats],
+            },
+            schema=self.schema(),
+        )
+
+    def version(self) -> int:
+        """Current table version (to roll back a failed multi-store write)."""
+        return int(self._tbl().version)  # writable only
+
+    def restore(self, version: int) -> None:
+        """Make ``version`` the current state again."""
+        self._tbl().restore(version)
+
+    def upsert(self, keyframes: Sequence[Keyframe]) -> None:
+        """Insert or replace rows by keyframe id."""
+        if not keyframes:
+            return
+        latest = list({k.id: k for k in keyframes}.values())
+        tbl = self._tbl()
+        rows = self._rows(latest)
+        tbl.merge_insert("id").when_matched_update_all().when_not_matched_insert_all().execute(rows)
+        self._maintain(tbl)
+
+    def _maintain(self, tbl: Any) -> None:
+        stats = tbl.stats()
+        frags = stats.get("fragment_stats", {}).get("num_small_fragments", 0)
+        if frags >= _COMPACT_AFTER_FRAGMENTS:
+            tbl.optimize(cleanup_older_than=timedelta(minutes=5))
+        if not tbl.list_indices() and stats.get("num_rows", 0) >= INDEX_MIN_ROWS:
+            tbl.create_index(
+                metric="cosine", vector_column_name="feature", index_type="IVF_HNSW_SQ"
+            )
+
+    def delete(self, ids: Sequence[str]) -> None:
+        """Delete rows by id (absent ones are ignored)."""
+        for start in range(0, len(ids), 500):
+            self._tbl().delete(f"id IN ({_quote(ids[start : start + 500])})")
+
+    def ids(self) -> set[str]:
+        """All stored keyframe ids."""
+        tbl = self._tbl()
+        if tbl is None:
+            return set()
+        n = int(tbl.count_rows())
+        if n == 0:
+            return set()
+        found = tbl.search().select(["id"]).limit(n).to_arrow()
+        return {str(i) for i in found.column("id").to_pylist()}
+
+    def get(self, keyframe_id: str) -> tuple[bytes | None, np.ndarray | None] | None:
+        """(jpeg, feature) of one keyframe, or None when it has no row."""
+        tbl = self._tbl()
+        if tbl is None:
+            return None
+        found = (
+            tbl.search()
+            .where(f"id = {_quote([keyframe_id])}")
+            .select(["jpeg", "feature"])
+            .limit(1)
+            .to_arrow()
+            .to_pylist()
+        )
+        if not found:
+            return None
+        feat = found[0]["feature"]
+        return found[0]["jpeg"], (np.asarray(feat, dtype=np.float32) if feat is not None else None)
+
+    def search(self, vector: Sequence[float] | np.ndarray, k: int) -> list[tuple[str, float]]:
+        """(id, cosine distance) of the ``k`` nearest keyframe features."""
+        query = as_vector(vector, self.feature_dim, "keyframe query vector")
+        if k <= 0:
+            return []
+        if k > 100_000:
+            raise InputError(f"k={k} is too large for a keyframe search")
+        tbl = self._tbl()
+        if tbl is None:
+            return []
+        found = (
+            tbl.search(query.tolist(), vector_column_name="feature")
+            .distance_type("cosine")
+            .select(["id"])
+            .limit(k)
+            .to_arrow()
+        )
+        ids = found.column("id").to_pylist()
+        dists = found.column("_distance").to_pylist()
+        return sorted(
+            ((str(i), float(d)) for i, d in zip(ids, dists, strict=True)),
+            key=lambda h: (h[1], h[0]),
+        )

@@ -1,0 +1,90 @@
+"""Opening the parts of a map directory: the graph database (migrated when writable),
+the search index database, both with clear errors for locked or broken maps."""
+
+from __future__ import annotations
+
+import contextlib
+import shutil
+from pathlib import Path
+
+from inherit_sg.errors import MapCorruptError, MapLockedError, SchemaVersionError
+from inherit_sg.store.kuzu_graph import KuzuGraph
+from inherit_sg.store.lock import is_locked, locked_error
+from inherit_sg.store.mapdir import GRAPH_FILE, INDEX_FILE, LANCE_DIR, LOCK_FILE, MapInfo
+from inherit_sg.store.migrations import apply_migrations, check_not_newer, latest_version
+from inherit_sg.store.search_index import SearchIndex
+
+# Files an interrupted ``create`` may leave behind before map.json exists.
+CREATE_LEFTOVERS = {
+    GRAPH_FILE,
+    GRAPH_FILE + ".wal",
+    INDEX_FILE,
+    INDEX_FILE + ".wal",
+    LANCE_DIR,
+    LOCK_FILE,
+}
+
+
+def clear_leftovers(root: Path) -> None:
+    """Remove what an interrupted create left (the caller holds the lock and checked
+    that nothing else is in the directory)."""
+    for name in CREATE_LEFTOVERS - {LOCK_FILE}:
+        leftover = root / name
+        if leftover.is_dir():
+            shutil.rmtree(leftover)
+        else:
+            leftover.unlink(missing_ok=True)
+
+
+def _open_kuzu(root: Path, name: str, read_only: bool) -> KuzuGraph:
+    try:
+        return KuzuGraph(root / name, read_only=read_only)
+    except RuntimeError as exc:
+        if "lock" not in str(exc).lower():
+            raise MapCorruptError(f"map {root}: cannot open {name}: {exc}") from None
+        if is_locked(root / LOCK_FILE):
+            raise locked_error(root, root / LOCK_FILE) from None
+        raise MapLockedError(f"map {root} is open in another process ({name} is locked)") from None
+
+
+def open_graph(root: Path, info: MapInfo, *, write: bool, create: bool = False) -> KuzuGraph:
+    """The graph database: created and migrated (``create``), migrated (``write``), or
+    checked to be at this code's schema version (read-only)."""
+    if not create and not (root / GRAPH_FILE).exists():
+        raise MapCorruptError(f"map {root} has no {GRAPH_FILE}")
+    graph = _open_kuzu(root, GRAPH_FILE, read_only=not write)
+    try:
+        known = latest_version()
+        if write:
+            with graph.writer() as conn:
+                apply_migrations(conn, info.dims, root)
+        else:
+            have = check_not_newer(graph.reader(), root, known)
+            if have < known:
+                raise SchemaVersionError(
+                    f"map {root} has schema version {have}, older than version {known} "
+                    "used by this INHerit-SG; open it once for writing to upgrade it"
+                )
+    except BaseException:
+        graph.close()
+        raise
+    return graph
+
+
+def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
+    """The search index database; None for a read-only store when it is missing. A
+    writable store whose index cannot be opened starts a fresh one (it is derived)."""
+    file = root / INDEX_FILE
+    if not write:
+        return SearchIndex(file, info.dims, read_only=True) if file.exists() else None
+    try:
+        return SearchIndex(file, info.dims, read_only=False)
+    except RuntimeError as exc:
+        if "lock" in str(exc).lower():
+            raise MapLockedError(
+                f"map {root} is open in another process ({INDEX_FILE} is locked)"
+            ) from None
+        for path in (file, file.with_name(file.name + ".wal")):
+            with contextlib.suppress(FileNotFoundError):
+                path.unlink()
+        return SearchIndex(file, info.dims, read_only=False)
