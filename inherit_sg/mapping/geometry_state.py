@@ -20,7 +20,8 @@ log = logging.getLogger(__name__)
 
 STATE_FILE = "geometry.pkl"
 STATE_FORMAT = 1
-_TRANSIENT = ("queue", "keyframes", "stats", "_pending", "lock", "image_feature")
+# the keyframe gate compares frame indices and features of this session only
+_TRANSIENT = ("queue", "keyframes", "stats", "_pending", "lock", "image_feature", "gate")
 
 
 def save_geometry(stream: GeometricStream, map_dir: str | Path) -> Path:

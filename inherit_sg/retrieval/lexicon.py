@@ -20,7 +20,7 @@ OBJECTS: dict[str, tuple[str, ...]] = {
     "bed": ("double bed", "single bed", "bunk bed", "king bed", "queen bed"),
     "nightstand": ("night stand", "bedside table", "night table", "bedside cabinet"),
     "wardrobe": ("closet", "armoire", "clothes closet"),
-    "dresser": ("chest of drawers", "chest of drawer", "bureau"),
+    "dresser": ("chest of drawers", "chest of drawer", "chests of drawers", "bureau"),
     "desk": ("writing desk", "office desk", "work desk", "computer desk", "workstation desk"),
     "chair": ("office chair", "desk chair", "dining chair", "kitchen chair", "side chair"),
     "armchair": ("easy chair", "recliner", "lounge chair", "accent chair", "reclining chair"),
@@ -249,6 +249,8 @@ PREPOSITIONS: dict[str, str] = {
 }
 # Prepositions that mean "not near" (a negated near).
 AWAY_PREPOSITIONS = frozenset({"far from", "away from", "far away from", "distant from"})
+# Prepositions that mean "not in" (a negated inside): "outside the kitchen".
+OUTSIDE_PREPOSITIONS = frozenset({"outside", "outside of"})
 # "with X <prep> it": the predicate from the target's side.
 WITH_INVERSE: dict[str, str] = {
     "on": "supports", "under": "above", "above": "under", "inside": "contains",
@@ -325,7 +327,8 @@ BE_WORDS = frozenset({
     "is", "are", "was", "were", "be", "been", "being", "am", "located", "situated", "placed",
     "positioned", "standing", "sitting", "lying", "hanging", "kept", "stored", "found",
     "set", "mounted", "resting", "seen", "put", "there is", "there are", "made of",
-    "made from", "made out of", "built from", "painted",
+    "made from", "made out of", "built from", "painted", "there should be",
+    "there must be", "there ought to be", "there might be", "there may be", "there could be",
 })
 HAVE_WORDS = frozenset({"has", "have", "having", "had", "got", "contains", "contain"})
 REL_PRONOUNS = frozenset({"that", "which", "who", "whose"})
@@ -339,7 +342,7 @@ QUESTION_WORDS = frozenset({"where", "what", "which", "how", "why", "when", "who
 
 # Politeness, request frames and deictic filler; removed before parsing.
 FILLER = frozenset({
-    "please", "kindly", "could you please", "can you please", "would you please",
+    "please", "kindly", "among", "amongst", "among all", "out of all", "could you please", "can you please", "would you please",
     "could you", "can you", "would you", "will you", "i am looking for", "looking for",
     "look for", "search for", "searching for", "i want to go to", "i want to find",
     "i would like to find", "i need to find", "i want to get to", "i would like",

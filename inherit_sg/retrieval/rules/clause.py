@@ -61,7 +61,8 @@ class ClauseParser(Grammar):
         while (tok := self.peek()) is not None:
             if verbs.is_verb_here(self):
                 made, candidate = verbs.parse_vp(self)
-                out.functions += made
+                out.functions += [c for c in made if c.kind == "function"]
+                self._route(out, [c for c in made if c.kind != "function"])
                 if candidate is not None and out.head is None:
                     out.head = candidate
                     out.places += candidate.places
@@ -98,8 +99,9 @@ class ClauseParser(Grammar):
         if out.head is not None:
             out.head.constraints += made
         else:
-            out.functions += made
+            out.functions += [c for c in made if c.kind == "function"]
             out.head = candidate
+            self._route(out, [c for c in made if c.kind != "function"])
 
     def _attach_postmodifiers(self, head: NP) -> None:
         start = self.i
@@ -142,7 +144,11 @@ class ClauseParser(Grammar):
         if out.head is None:
             if self._stray_object(out, np, prev):
                 return
+            if flip:  # "not the red one. …": the one excluded, described by negation
+                np.constraints = [replace(c, negated=not c.negated) for c in np.constraints]
             out.head = np
+            return
+        if self._replaces_head(out, np, neg):
             return
         self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
 
@@ -158,6 +164,26 @@ class ClauseParser(Grammar):
             self.notes.append(f"{np.noun!r} is the object of {prev.text!r}, not the target")
             return True
         return False
+
+    def _replaces_head(self, out: Clause, np: NP, neg: bool) -> bool:
+        """A named object after a head that names none takes its place: "not the red one.
+        go to another lamp", "go to the kitchen and find the mug", "there should be a lamp
+        …". The old head's constraints (or its room) then describe the new one."""
+        head = out.head
+        assert head is not None
+        if neg or np.kind != OBJECT or not np.labels:
+            return False
+        if head.kind == ONE and not head.labels:
+            np.constraints = head.constraints + np.constraints
+            np.other = np.other or head.other
+        elif head.kind == ROOM and head.room_type is not None:
+            out.places.append(self._place(head, False))
+            np.constraints = head.constraints + np.constraints
+        else:
+            return False
+        self.notes.append(f"{np.noun!r} is the target; the earlier phrase describes it")
+        out.head = np
+        return True
 
     def _second_phrase(self, out: Clause, np: NP, neg: bool, coordinated: bool) -> None:
         head = out.head

@@ -70,6 +70,9 @@ class Grammar(Cursor):
             np.kind = ONE  # "the biggest", "the red"
         if run:
             self._head(np, run)
+        tok = self.peek()
+        if np.kind == ROOM and tok is not None and tok.has("num") and tok.text.isdigit():
+            np.words.append(self.advance().text)  # a numbered room: "bedroom 2"
         self._postmodifiers(np, landmark)
         self._finish(np)
         return np
@@ -341,7 +344,9 @@ class Grammar(Cursor):
         the preposition has no object."""
         tok = self.advance()
         neg = self.take_neg()
-        predicate = "near" if tok.has("away") else tok.tags["prep"]
+        predicate = tok.tags["prep"] if not tok.has("away") else "near"
+        if tok.text in lx.OUTSIDE_PREPOSITIONS:
+            predicate = "inside"  # "outside the kitchen": not in it
         if tok.has("away"):
             neg = not neg
         stress = self.take_stress()

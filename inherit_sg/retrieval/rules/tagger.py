@@ -89,6 +89,7 @@ def phrase_table() -> tuple[dict[tuple[str, ...], dict[str, Any]], int, frozense
         (lx.OTHER_WORDS, "other"),
         (lx.QUESTION_WORDS, "wh"),
         (lx.AWAY_PREPOSITIONS, "away"),
+        (lx.OUTSIDE_PREPOSITIONS, "away"),
         (lx.ADVERBS, "adv"),
         (lx.SUBORDINATORS, "sub"),
         (lx.EXAMPLE_WORDS, "like"),

@@ -103,7 +103,9 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     span = " ".join([tok.text, *words]).strip()
     weight = weighted("function", stress)
     made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
-    return [made], head
+    # "use the toilet close to the bookshelf": the object's relations place the target
+    where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
+    return [made, *where], head
 
 
 def _object_marker(tok: Tok, verb: str) -> bool:
