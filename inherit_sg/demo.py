@@ -96,7 +96,7 @@ def run_showcase(map_dir: Path, dataset: Path) -> list[ShowcaseAnswer]:
                     res.timings_ms.get("total", 0.0),
                 )
             )
-        turns = next((c["turns"] for c in convs if len(c["turns"]) >= 2), [])
+        turns: list[dict[str, Any]] = next((c["turns"] for c in convs if len(c["turns"]) >= 2), [])
         conversation = Conversation()
         for i, turn in enumerate(turns[:2]):
             res = service.query(turn["text"], conversation=conversation)
