@@ -21,7 +21,7 @@ import numpy as np
 from ingest.synthetic.scene import ObjectGT, Scene
 from ingest.synthetic.truth_predicates import above, near, next_to, on
 from ingest.synthetic.vocabulary import OBJECT_KINDS
-from inherit_sg.model import Edge, ObjectNode
+from inherit_sg.model import Edge, ObjectNode, RoomNode
 
 _SYNONYMS: dict[str, set[str]] = {}
 for _kind in OBJECT_KINDS.values():
@@ -172,3 +172,41 @@ def evaluate_objects(
         relations_checked=checked,
         pairs=pairs,
     )
+
+
+def room_correspondence(
+    rooms: Iterable[RoomNode], scene: Scene, floor_levels: dict[str, int], step: float = 0.1
+) -> dict[str, str]:
+    """Predicted room id -> the true room its mask overlaps most (same floor), by
+    sampling each true room polygon on a ``step`` grid."""
+    import cv2
+
+    samples: list[tuple[str, int, np.ndarray]] = []
+    for room in scene.rooms:
+        poly = np.asarray(room.polygon, dtype=float)
+        lo, hi = poly.min(axis=0), poly.max(axis=0)
+        xs, ys = np.meshgrid(
+            np.arange(lo[0] + step / 2, hi[0], step), np.arange(lo[1] + step / 2, hi[1], step)
+        )
+        pts = np.stack([xs.ravel(), ys.ravel()], axis=1)
+        contour = poly.astype(np.float32).reshape(-1, 1, 2)
+        inside = np.array(
+            [cv2.pointPolygonTest(contour, (float(x), float(y)), False) > 0 for x, y in pts],
+            dtype=bool,
+        )
+        samples.append((room.id, room.floor, pts[inside]))
+    out: dict[str, str] = {}
+    for pred in rooms:
+        if pred.mask is None:
+            continue
+        level = floor_levels.get(pred.floor_id or "")
+        best, best_n = None, 0
+        for room_id, floor, pts in samples:
+            if level is not None and floor != level:
+                continue
+            n = sum(pred.mask.contains_xy(float(x), float(y)) for x, y in pts)
+            if n > best_n:
+                best, best_n = room_id, n
+        if best is not None:
+            out[pred.id] = best
+    return out

@@ -146,4 +146,5 @@ def test_interrupted_build_leaves_an_openable_map(house_dir: Path, tmp_path: Pat
         graph = store.load_graph()
         assert len(list(graph.objects())) > 0
         for obj in graph.objects():
-            assert graph.parent(obj.id) is not None
+            # early in a walk an object may lie outside every room seen so far
+            assert (graph.parent(obj.id) is not None) == (obj.room_id is not None), obj.id
