@@ -242,6 +242,13 @@ class Mapper:
             log.info("global update: %s", reason)
             self.geometry.refine()
             self.geometry.apply_to(self.graph, refined=True)
+            # floors from heights: keyframes taken on the stairs may carry the floor
+            # the camera was leaving
+            for tracked in self.objects.objects.values():
+                floor = self.geometry.floor_of_height(tracked.node.bbox.min[2] + 0.05)
+                if floor is not None and floor != tracked.floor_id:
+                    tracked.floor_id = tracked.node.floor_id = floor
+                    tracked.dirty = True
             merged = self.objects.remove_duplicates()
             alias = {drop: keep for keep, drop in merged}
             self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
