@@ -11,7 +11,9 @@ one core is available; frames are written in order by the calling process.
 
 from __future__ import annotations
 
+import multiprocessing
 import os
+import sys
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor
@@ -166,10 +168,14 @@ def _frames(
         _init_worker(world, lights, intrinsics, shadows)
         yield from map(_render_job, jobs)
         return
+    # Forking a process that already runs LanceDB's async runtime can deadlock the
+    # child; start clean workers then (slower start, same frames).
+    context = multiprocessing.get_context("forkserver" if "lancedb" in sys.modules else None)
     with ProcessPoolExecutor(
         max_workers=workers,
         initializer=_init_worker,
         initargs=(world, lights, intrinsics, shadows),
+        mp_context=context,
     ) as pool:
         yield from pool.map(_render_job, jobs, chunksize=4)
 
