@@ -28,11 +28,17 @@ from inherit_sg.config import Config
 from inherit_sg.errors import InheritSGError
 from inherit_sg.geometry.events import FloorChanged, RoomEntered
 from inherit_sg.geometry.gating import PendingKeyframe
+from inherit_sg.mapping.adapters import (
+    create_area_labeller,
+    create_relation_verifier,
+    create_supervisor,
+)
 from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
 from inherit_sg.mapping.missing import MissingTracker
 from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier
 from inherit_sg.mapping.semantic import LabelSimilarity, SemanticStream
-from inherit_sg.mapping.supervisor import HeuristicSupervisor, Supervisor
+from inherit_sg.mapping.supervisor import Supervisor
 from inherit_sg.mapping.update import HierarchyBuilder
 from inherit_sg.model import Edge, EdgeKind, Frame, Keyframe, ObjectNode, ObjectStatus, Session
 from inherit_sg.store import MapStore
@@ -119,11 +125,17 @@ class Mapper:
         self.semantic = SemanticStream(
             create_segmenter(config), create_visual_encoder(config), describer, self.objects
         )
+        verifier = create_relation_verifier(config)
         self.builder = HierarchyBuilder(
-            self.embedder, refresh_descriptions=describer.name == "offline"
+            self.embedder,
+            refresh_descriptions=describer.name == "offline",
+            area_labeller=create_area_labeller(config),
+            relation_verifier=verifier,
+            keyframe_view=None if isinstance(verifier, GeometricVerifier) else self._keyframe_view,
         )
         self.builder.remember_embedded(self.graph)
-        self.supervisor = supervisor or HeuristicSupervisor()
+        self.supervisor = supervisor or create_supervisor(config, self._bev_png)
+        self._seen_index: dict[str, dict[str, tuple[Box, float]]] | None = None
         self._lock = threading.RLock()  # geometric stream, working graph, object map
         self._update_reason: str | None = None
         self._pending_keyframes: list[Keyframe] = []
@@ -250,6 +262,7 @@ class Mapper:
                     tracked.floor_id = tracked.node.floor_id = floor
                     tracked.dirty = True
             merged = self.objects.remove_duplicates()
+            self._seen_index = None
             alias = {drop: keep for keep, drop in merged}
             self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
             for room in self.graph.nodes():
@@ -313,6 +326,46 @@ class Mapper:
             else 0.0,
             timings_s={k: round(v, 2) for k, v in self._timings.items()},
         )
+
+    # ------------------------------------------------------- model-backed roles
+    def _bev_png(self) -> bytes:
+        """PNG of the current floor's BEV picture (NodeNotFoundError before any map)."""
+        rgb = self.geometry.bev()
+        ok, buf = cv2.imencode(".png", cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR))
+        if not ok:
+            raise RuntimeError("PNG encoding of the BEV picture failed")
+        return buf.tobytes()
+
+    def _keyframe_view(self, object_id: str) -> tuple[bytes | None, dict[str, Box]] | None:
+        """The keyframe showing ``object_id`` with the most other objects, as JPEG bytes
+        and the objects' boxes scaled to that JPEG (for the relation verifier)."""
+        if self._seen_index is None:
+            index: dict[str, dict[str, tuple[Box, float]]] = {}
+            for edge in [*self.graph.edges(EdgeKind.SEEN_IN), *self._pending_seen]:
+                box = edge.prop("bbox")
+                if box is not None and len(box) == 4:
+                    score = float(edge.prop("score", 0.0) or 0.0)
+                    index.setdefault(edge.dst, {})[edge.src] = (
+                        (int(box[0]), int(box[1]), int(box[2]), int(box[3])),
+                        score,
+                    )
+            self._seen_index = index
+        showing = [(kf, seen) for kf, seen in self._seen_index.items() if object_id in seen]
+        if not showing:
+            return None
+        kf_id, seen = max(showing, key=lambda kv: (len(kv[1]), kv[1][object_id][1], kv[0]))
+        kf = next((k for k in self._pending_keyframes if k.id == kf_id), None)
+        if kf is None:
+            try:
+                kf = self.store.get_keyframe(kf_id, with_image=True)
+            except InheritSGError:
+                return None
+        if kf.jpeg is None:
+            return None
+        side = max(kf.width, kf.height)
+        scale = min(1.0, self.config.store.keyframe_max_side / side) if side else 1.0
+        boxes = {oid: tuple(round(v * scale) for v in b) for oid, (b, _) in seen.items()}
+        return kf.jpeg, boxes  # type: ignore[return-value]
 
     def objects_in(self, room_id: str) -> list[ObjectNode]:
         """Current object nodes of one room."""

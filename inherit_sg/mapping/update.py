@@ -13,10 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from inherit_sg.mapping.areas import cluster_objects, label_area, summarise_area
+from inherit_sg.mapping.area_labeller import AreaLabeller, RuleAreaLabeller
+from inherit_sg.mapping.areas import cluster_objects
 from inherit_sg.mapping.node_text import node_text
 from inherit_sg.mapping.object_map import ObjectMap
-from inherit_sg.mapping.relations import infer_relations
+from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier, RelationVerifier
+from inherit_sg.mapping.relations import Relation, infer_relations
 from inherit_sg.mapping.room_semantics import infer_room_type, summarise_room
 from inherit_sg.mapping.semantic import LabelEmbedder
 from inherit_sg.model import (
@@ -42,6 +44,8 @@ def _wording(text: str) -> str:
 
 
 RoomLocator = Callable[[float, float, str | None], str | None]
+# object id -> (JPEG of a keyframe showing it, pixel boxes of the objects in that JPEG)
+KeyframeView = Callable[[str], tuple[bytes | None, dict[str, Box]] | None]
 
 
 @dataclass
@@ -75,9 +79,19 @@ def sync_edges(
 class HierarchyBuilder:
     """Rebuilds objects → areas → rooms in the working graph and keeps embeddings fresh."""
 
-    def __init__(self, embedder: LabelEmbedder, refresh_descriptions: bool = True) -> None:
+    def __init__(
+        self,
+        embedder: LabelEmbedder,
+        refresh_descriptions: bool = True,
+        area_labeller: AreaLabeller | None = None,
+        relation_verifier: RelationVerifier | None = None,
+        keyframe_view: KeyframeView | None = None,
+    ) -> None:
         self.embedder = embedder
         self.refresh_descriptions = refresh_descriptions
+        self.area_labeller = area_labeller or RuleAreaLabeller()
+        self.relation_verifier = relation_verifier or GeometricVerifier()
+        self.keyframe_view = keyframe_view
         self._embedded_text: dict[str, str] = {}
 
     def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
@@ -135,16 +149,16 @@ class HierarchyBuilder:
             room = rooms[room_id]
             room_num = room_id.partition(":")[2]
             summaries = []
+            room.label = infer_room_type([o.label for o in members])
             for k, cluster in enumerate(cluster_objects(members)):
-                labels = [o.label for o in cluster]
-                label = label_area(labels)
+                label, summary = self.area_labeller.label([o.label for o in cluster], room.label)
                 pts = np.array([o.position for o in cluster], dtype=float)
                 area = AreaNode(
                     make_id(Layer.AREA, f"{room_num}.{k}"),
                     label,
                     room_id=room_id,
                     position=tuple(float(v) for v in pts.mean(axis=0)),  # type: ignore[arg-type]
-                    summary=summarise_area(label, labels),
+                    summary=summary,
                 )
                 areas_wanted[area.id] = area
                 summaries.append(area.summary)
@@ -153,7 +167,6 @@ class HierarchyBuilder:
                     o.area_id = area.id
                     has_object.append(Edge.make(EdgeKind.HAS_OBJECT, area.id, o.id))
             labels = [o.label for o in members]
-            room.label = infer_room_type(labels)
             floor = graph.get(room.floor_id) if room.floor_id and room.floor_id in graph else None
             level = floor.level if isinstance(floor, FloorNode) else None
             room.summary = summarise_room(room.label, level, summaries, labels)
@@ -199,10 +212,27 @@ class HierarchyBuilder:
             neighbours[e.src].add(e.dst)
             neighbours[e.dst].add(e.src)
         relations = infer_relations(live, {o.id: o.room_id for o in live}, neighbours)
+        relations = self._verify(relations, {o.id: o.label for o in live})
         stats.relations = len(relations)
         sync_edges(graph, EdgeKind.RELATION, [r.to_edge() for r in relations])
         stats.embedded = self.embed_changed(graph)
         return stats
+
+    def _verify(self, relations: list[Relation], labels: dict[str, str]) -> list[Relation]:
+        """Relations the verifier keeps, checked on a keyframe of each source object."""
+        if isinstance(self.relation_verifier, GeometricVerifier) or self.keyframe_view is None:
+            return relations
+        by_src: dict[str, list[Relation]] = defaultdict(list)
+        for r in relations:
+            by_src[r.src].append(r)
+        kept: list[Relation] = []
+        for src, group in by_src.items():
+            view = self.keyframe_view(src)
+            if view is None:
+                kept.extend(group)
+            else:
+                kept.extend(self.relation_verifier.verify(group, view[0], view[1], labels))
+        return kept
 
     def _sync_areas(self, graph: SceneGraph, wanted: dict[str, AreaNode]) -> None:
         for node in list(graph.nodes(Layer.AREA)):
