@@ -1,0 +1,1 @@
+"""The REST service (FastAPI app, routes, web viewer) lives here; it is not built yet."""
