@@ -1,1 +1,9 @@
-"""The REST service (FastAPI app, routes, web viewer) lives here; it is not built yet."""
+"""The REST service of INHerit-SG: a FastAPI app (:func:`api.app.create_app`) that serves
+one or more maps read-only under ``/v1/maps/{name}/…`` as a thin face over
+:class:`inherit_sg.facade.MapService`."""
+
+from __future__ import annotations
+
+from api.app import create_app
+
+__all__ = ["create_app"]

@@ -1,0 +1,129 @@
+"""The FastAPI app: thin routes over :class:`~inherit_sg.facade.MapService`.
+
+``create_app(maps)`` serves one map (a directory, under its basename), every map inside a
+root folder, or an explicit ``{name: directory}`` dict, read-only, at ``/v1/maps/{name}``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from pathlib import Path
+from typing import Annotated, Any
+
+from fastapi import FastAPI, Query, Request
+from fastapi.responses import JSONResponse
+
+from api.errors import install_error_handlers
+from api.models import (
+    CypherRequest,
+    CypherResponse,
+    HealthResponse,
+    ObjectDetail,
+    ObjectPage,
+    QueryRequest,
+)
+from api.objects import get_object, list_objects
+from api.state import Registry, ServedMap, resolve_maps
+from inherit_sg import __version__
+from inherit_sg.config import Config, load_config
+
+
+def _served(request: Request, name: str) -> ServedMap:
+    registry: Registry = request.app.state.registry
+    return registry.get(name)
+
+
+def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> FastAPI:
+    """The REST app serving ``maps``; each map is opened read-only once, at startup, and
+    closed at shutdown."""
+    named = resolve_maps(maps)
+    cfg = config or load_config()
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        app.state.registry = Registry(named, cfg)
+        try:
+            yield
+        finally:
+            app.state.registry.close()
+
+    app = FastAPI(title="INHerit-SG", version=__version__, lifespan=lifespan)
+    install_error_handlers(app)
+
+    @app.get("/healthz")
+    def healthz() -> HealthResponse:
+        """Liveness: the process answers."""
+        return HealthResponse(status="ok")
+
+    @app.get("/readyz", response_model=HealthResponse)
+    def readyz(request: Request) -> JSONResponse:
+        """Readiness: 200 when every served map is open, 503 naming the ones that are not."""
+        registry: Registry = request.app.state.registry
+        states = {
+            name: "ok" if s.service is not None else (s.error.message if s.error else "closed")
+            for name, s in registry.maps.items()
+        }
+        ready = all(v == "ok" for v in states.values())
+        body = HealthResponse(status="ok" if ready else "unavailable", maps=states)
+        return JSONResponse(body.model_dump(), status_code=200 if ready else 503)
+
+    @app.get("/v1/maps/{map}")
+    def map_stats(request: Request, map: str) -> dict[str, Any]:
+        """Counts per table, sessions and bytes on disk."""
+        served = _served(request, map)
+        with served.lock:
+            return served.require().stats()
+
+    @app.post("/v1/maps/{map}/query")
+    def query(request: Request, map: str, body: QueryRequest) -> dict[str, Any]:
+        """Answer a natural-language request (the query result JSON of the CLI)."""
+        served = _served(request, map)
+        registry: Registry = request.app.state.registry
+        conv = (
+            registry.conversation(map, body.conversation_id)
+            if body.conversation_id is not None
+            else None
+        )
+        with served.lock:
+            result = served.require().query(
+                body.text, conversation=conv, verify=body.verify, top_k=body.top_k
+            )
+        out = result.to_dict()
+        if body.conversation_id is not None:
+            out["conversation_id"] = body.conversation_id
+        return out
+
+    @app.post("/v1/maps/{map}/cypher")
+    def cypher(request: Request, map: str, body: CypherRequest) -> CypherResponse:
+        """Run a read-only Cypher query; write clauses answer 403."""
+        served = _served(request, map)
+        with served.lock:
+            result = served.require().cypher(body.query, body.params, max_rows=body.max_rows)
+        return CypherResponse(columns=result.columns, rows=result.rows, truncated=result.truncated)
+
+    @app.get("/v1/maps/{map}/objects")
+    def objects(
+        request: Request,
+        map: str,
+        floor: Annotated[str | None, Query(description="Floor id, e.g. floor:0.")] = None,
+        room: Annotated[str | None, Query(description="Room id.")] = None,
+        label: Annotated[str | None, Query(description="Object label (any case).")] = None,
+        limit: Annotated[int, Query(ge=1, le=1000)] = 100,
+        offset: Annotated[int, Query(ge=0)] = 0,
+    ) -> ObjectPage:
+        """A page of objects, ordered by id."""
+        served = _served(request, map)
+        with served.lock:
+            return list_objects(
+                served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
+            )
+
+    @app.get("/v1/maps/{map}/objects/{object_id}")
+    def object_detail(request: Request, map: str, object_id: str) -> ObjectDetail:
+        """One object with its relations and hierarchy path; 404 when absent."""
+        served = _served(request, map)
+        with served.lock:
+            return get_object(served.require(), object_id)
+
+    return app

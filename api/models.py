@@ -1,0 +1,97 @@
+"""Request and response models of the REST service."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+MAX_CYPHER_ROWS = 10_000
+
+
+class QueryRequest(BaseModel):
+    """``POST /v1/maps/{map}/query``: a natural-language request."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    text: str = Field(description="The request, e.g. 'the mug on the kitchen table'.")
+    conversation_id: str | None = Field(
+        None,
+        max_length=128,
+        description="Keeps the history server-side so follow-ups ('the other one') resolve.",
+    )
+    verify: bool | None = Field(None, description="Run the verifier (config default when null).")
+    top_k: int | None = Field(None, ge=1, le=100, description="Candidates to return.")
+
+
+class CypherRequest(BaseModel):
+    """``POST /v1/maps/{map}/cypher``: a read-only Cypher query."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    query: str = Field(min_length=1, description="A read-only Cypher statement.")
+    params: dict[str, Any] = Field(default_factory=dict, description="Query parameters.")
+    max_rows: int = Field(1000, ge=1, le=MAX_CYPHER_ROWS, description="Stop after this many rows.")
+
+
+class CypherResponse(BaseModel):
+    """Rows of a Cypher query; ``truncated`` when ``max_rows`` cut the result."""
+
+    columns: list[str]
+    rows: list[list[Any]]
+    truncated: bool
+
+
+class HealthResponse(BaseModel):
+    """Liveness / readiness answer."""
+
+    status: str
+    maps: dict[str, str] = Field(default_factory=dict)
+
+
+class ObjectSummary(BaseModel):
+    """One object row of the public ``Object`` table."""
+
+    id: str
+    label: str
+    position: list[float] | None
+    room_id: str | None
+    floor_id: str | None
+    description: str | None
+    status: str | None
+
+
+class ObjectPage(BaseModel):
+    """A page of objects with the total that matched the filters."""
+
+    objects: list[ObjectSummary]
+    total: int
+    limit: int
+    offset: int
+
+
+class RelationEdge(BaseModel):
+    """A ``RELATION`` edge touching an object."""
+
+    direction: str = Field(description="'out' when the object is the subject, else 'in'.")
+    predicate: str
+    confidence: float | None
+    other_id: str
+    other_label: str
+
+
+class HierarchyStep(BaseModel):
+    """One ancestor of an object (area, room or floor)."""
+
+    layer: str
+    id: str
+    label: str
+
+
+class ObjectDetail(ObjectSummary):
+    """An object with its relations and its area → room → floor path."""
+
+    bbox_min: list[float] | None
+    bbox_max: list[float] | None
+    relations: list[RelationEdge]
+    hierarchy: list[HierarchyStep]

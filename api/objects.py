@@ -1,0 +1,90 @@
+"""Object listing and detail, read through Cypher on the public graph tables."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from api.models import HierarchyStep, ObjectDetail, ObjectPage, ObjectSummary, RelationEdge
+from inherit_sg.errors import NodeNotFoundError
+from inherit_sg.facade import MapService
+
+_FIELDS = "o.id, o.label, o.position, o.room_id, o.floor_id, o.description, o.status"
+
+
+def _summary(row: list[Any]) -> dict[str, Any]:
+    keys = ("id", "label", "position", "room_id", "floor_id", "description", "status")
+    return dict(zip(keys, row, strict=True))
+
+
+def list_objects(
+    service: MapService,
+    *,
+    floor: str | None,
+    room: str | None,
+    label: str | None,
+    limit: int,
+    offset: int,
+) -> ObjectPage:
+    """A page of objects ordered by id, filtered by floor id, room id and label."""
+    where, params = [], {}
+    for name, column, value in (
+        ("floor", "o.floor_id", floor),
+        ("room", "o.room_id", room),
+        ("label", "lower(o.label)", label.lower() if label is not None else None),
+    ):
+        if value is not None:
+            where.append(f"{column} = ${name}")
+            params[name] = value
+    clause = f" WHERE {' AND '.join(where)}" if where else ""
+    total = service.cypher(f"MATCH (o:Object){clause} RETURN count(o)", params).rows[0][0]
+    page = service.cypher(
+        f"MATCH (o:Object){clause} RETURN {_FIELDS} ORDER BY o.id SKIP $offset LIMIT $limit",
+        {**params, "offset": offset, "limit": limit},
+        max_rows=None,
+    )
+    objects = [ObjectSummary(**_summary(row)) for row in page.rows]
+    return ObjectPage(objects=objects, total=int(total), limit=limit, offset=offset)
+
+
+def get_object(service: MapService, object_id: str) -> ObjectDetail:
+    """One object with its RELATION edges and its area → room → floor path."""
+    found = service.cypher(
+        f"MATCH (o:Object) WHERE o.id = $id RETURN {_FIELDS}, o.bbox_min, o.bbox_max, o.area_id",
+        {"id": object_id},
+    )
+    if not found.rows:
+        raise NodeNotFoundError(f"no object with id {object_id!r} in map {service.store.path}")
+    row = found.rows[0]
+    base = _summary(row[:7])
+    bbox_min, bbox_max, area_id = row[7:]
+    relations = [
+        RelationEdge(
+            direction=direction, predicate=p, confidence=c, other_id=oid, other_label=olabel
+        )
+        for direction, pattern in (
+            ("out", "(o:Object)-[e:RELATION]->(x:Object)"),
+            ("in", "(x:Object)-[e:RELATION]->(o:Object)"),
+        )
+        for p, c, oid, olabel in service.cypher(
+            f"MATCH {pattern} WHERE o.id = $id "
+            "RETURN e.predicate, e.confidence, x.id, x.label ORDER BY e.predicate, x.id",
+            {"id": object_id},
+            max_rows=None,
+        ).rows
+    ]
+    hierarchy = []
+    for layer, table, node_id in (
+        ("area", "Area", area_id),
+        ("room", "Room", base["room_id"]),
+        ("floor", "Floor", base["floor_id"]),
+    ):
+        if not node_id:
+            continue
+        hit = service.cypher(
+            f"MATCH (n:{table}) WHERE n.id = $id RETURN n.label", {"id": node_id}
+        ).rows
+        if hit:
+            hierarchy.append(HierarchyStep(layer=layer, id=node_id, label=hit[0][0] or ""))
+    return ObjectDetail(
+        **base, bbox_min=bbox_min, bbox_max=bbox_max, relations=relations, hierarchy=hierarchy
+    )

@@ -1,0 +1,181 @@
+"""The REST service end to end on a real map imported from a generated house: every route,
+the error mapping, paging and a server-side conversation follow-up."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import typer
+from fastapi.testclient import TestClient
+from typer.testing import CliRunner
+
+from api.app import create_app
+from ingest.synthetic.generate import generate_house
+from inherit_sg.cli.serve_cmd import serve
+from inherit_sg.errors import MapNotFoundError
+from inherit_sg.facade import import_into_new_map
+
+NAME = "house3"
+
+
+@pytest.fixture(scope="module")
+def map_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    root = tmp_path_factory.mktemp("api")
+    scene = generate_house(3, 1, 4).scene
+    src = root / "scene.json"
+    src.write_text(json.dumps(scene.to_dict()))
+    out = root / "maps" / NAME
+    out.parent.mkdir()
+    import_into_new_map(src, out, fmt="scene")
+    return out
+
+
+@pytest.fixture(scope="module")
+def client(map_dir: Path) -> Iterator[TestClient]:
+    with TestClient(create_app(map_dir)) as c:
+        yield c
+
+
+def cypher(client: TestClient, query: str, **extra: object) -> dict:
+    resp = client.post(f"/v1/maps/{NAME}/cypher", json={"query": query, **extra})
+    assert resp.status_code == 200, resp.text
+    return resp.json()
+
+
+def test_health_and_ready(client: TestClient) -> None:
+    assert client.get("/healthz").json() == {"status": "ok", "maps": {}}
+    ready = client.get("/readyz")
+    assert ready.status_code == 200 and ready.json()["maps"] == {NAME: "ok"}
+
+
+def test_stats(client: TestClient, map_dir: Path) -> None:
+    stats = client.get(f"/v1/maps/{NAME}").json()
+    assert stats["path"] == str(map_dir)
+    assert stats["nodes"]["Floor"] == 1 and stats["nodes"]["Room"] == 4
+    assert stats["nodes"]["Object"] > 0 and stats["bytes"]["total"] > 0
+
+
+@pytest.mark.parametrize("name", ["nope", "..", "a%2F..%2Fb", "bad name!"])
+def test_unknown_or_bad_map_name(client: TestClient, name: str) -> None:
+    resp = client.get(f"/v1/maps/{name}")
+    assert resp.status_code == 404
+    assert resp.json()["error"] in {"map_not_found", "not_found"} and resp.json()["message"]
+
+
+def test_cypher_and_limits(client: TestClient) -> None:
+    data = cypher(client, "MATCH (o:Object) RETURN o.id ORDER BY o.id", max_rows=2)
+    assert data["columns"] == ["o.id"] and len(data["rows"]) == 2 and data["truncated"]
+    data = cypher(client, "MATCH (f:Floor) WHERE f.level = $lvl RETURN f.id", params={"lvl": 0})
+    assert data["rows"] and not data["truncated"]
+    too_many = client.post(f"/v1/maps/{NAME}/cypher", json={"query": "RETURN 1", "max_rows": 10001})
+    assert too_many.status_code == 400 and too_many.json()["error"] == "bad_input"
+
+
+def test_cypher_write_refused(client: TestClient) -> None:
+    resp = client.post(
+        f"/v1/maps/{NAME}/cypher", json={"query": "MATCH (o:Object) SET o.label = 'x'"}
+    )
+    assert resp.status_code == 403 and resp.json()["error"] == "read_only"
+    syntax = client.post(f"/v1/maps/{NAME}/cypher", json={"query": "MATCH (o:Nope) RETURN o"})
+    assert syntax.status_code == 400 and syntax.json()["error"] == "cypher_error"
+
+
+def test_objects_paging_and_filters(client: TestClient) -> None:
+    ids = [r[0] for r in cypher(client, "MATCH (o:Object) RETURN o.id ORDER BY o.id")["rows"]]
+    first = client.get(f"/v1/maps/{NAME}/objects", params={"limit": 3}).json()
+    second = client.get(f"/v1/maps/{NAME}/objects", params={"limit": 3, "offset": 3}).json()
+    assert first["total"] == len(ids)
+    assert [o["id"] for o in first["objects"] + second["objects"]] == ids[:6]
+    one = first["objects"][0]
+    by_room = client.get(f"/v1/maps/{NAME}/objects", params={"room": one["room_id"]}).json()
+    assert by_room["total"] >= 1
+    assert all(o["room_id"] == one["room_id"] for o in by_room["objects"])
+    by_label = client.get(
+        f"/v1/maps/{NAME}/objects", params={"label": one["label"].upper(), "limit": 1000}
+    ).json()
+    assert one["id"] in [o["id"] for o in by_label["objects"]]
+    none = client.get(f"/v1/maps/{NAME}/objects", params={"floor": "floor:99"}).json()
+    assert none["total"] == 0 and none["objects"] == []
+    assert client.get(f"/v1/maps/{NAME}/objects", params={"limit": 0}).status_code == 400
+
+
+def test_object_detail(client: TestClient) -> None:
+    rel = cypher(
+        client, "MATCH (a:Object)-[e:RELATION]->(b:Object) RETURN a.id, e.predicate, b.id LIMIT 1"
+    )["rows"]
+    oid = rel[0][0] if rel else cypher(client, "MATCH (o:Object) RETURN o.id LIMIT 1")["rows"][0][0]
+    detail = client.get(f"/v1/maps/{NAME}/objects/{oid}").json()
+    assert detail["id"] == oid
+    assert [h["layer"] for h in detail["hierarchy"]][-2:] == ["room", "floor"]
+    assert detail["hierarchy"][-1]["id"] == detail["floor_id"]
+    if rel:
+        out = [
+            (r["predicate"], r["other_id"]) for r in detail["relations"] if r["direction"] == "out"
+        ]
+        assert (rel[0][1], rel[0][2]) in out
+    missing = client.get(f"/v1/maps/{NAME}/objects/obj:does-not-exist")
+    assert missing.status_code == 404 and missing.json()["error"] == "node_not_found"
+
+
+def test_query_and_errors(client: TestClient) -> None:
+    label = cypher(client, "MATCH (o:Object) RETURN o.label ORDER BY o.id LIMIT 1")["rows"][0][0]
+    resp = client.post(f"/v1/maps/{NAME}/query", json={"text": f"the {label}", "top_k": 2})
+    assert resp.status_code == 200, resp.text
+    data = resp.json()
+    assert data["answer"]["label"] == label and len(data["candidates"]) <= 2
+    assert set(data["timings_ms"]) == {"parse", "retrieve", "verify", "total"}
+    empty = client.post(f"/v1/maps/{NAME}/query", json={"text": "   "})
+    assert empty.status_code == 400 and empty.json()["error"] == "bad_query"
+    missing = client.post(f"/v1/maps/{NAME}/query", json={})
+    assert missing.status_code == 400
+    assert client.post("/v1/maps/nope/query", json={"text": "a chair"}).status_code == 404
+
+
+def test_conversation_follow_up(client: TestClient) -> None:
+    rows = cypher(
+        client,
+        "MATCH (o:Object) WITH o.label AS l, count(*) AS n WHERE n >= 2 RETURN l ORDER BY l LIMIT 1",
+    )["rows"]
+    assert rows, "the generated house has a label seen twice"
+    label = rows[0][0]
+    url = f"/v1/maps/{NAME}/query"
+    first = client.post(url, json={"text": f"the {label}", "conversation_id": "c1"}).json()
+    other = client.post(url, json={"text": "the other one", "conversation_id": "c1"}).json()
+    assert first["answer"]["label"] == label and other["answer"]["label"] == label
+    assert other["answer"]["id"] != first["answer"]["id"]
+    assert other["conversation_id"] == "c1"
+    again = client.post(url, json={"text": "the other one", "conversation_id": "c1"}).json()
+    assert again["answer"] is None or again["answer"]["id"] != other["answer"]["id"]
+
+
+def test_several_maps_and_not_ready(map_dir: Path, tmp_path: Path) -> None:
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / "map.json").write_text("{not json")
+    app = create_app({"a": map_dir, "b": broken})
+    with TestClient(app) as c:
+        ready = c.get("/readyz")
+        assert ready.status_code == 503 and ready.json()["maps"]["a"] == "ok"
+        assert ready.json()["maps"]["b"] != "ok"
+        assert c.get("/v1/maps/a").json()["nodes"]["Room"] == 4
+        assert c.get("/v1/maps/b").status_code >= 400
+        assert c.get(f"/v1/maps/{NAME}").status_code == 404
+
+
+def test_root_folder_and_bad_root(map_dir: Path, tmp_path: Path) -> None:
+    with TestClient(create_app(map_dir.parent)) as c:
+        assert c.get(f"/v1/maps/{NAME}").status_code == 200
+    with pytest.raises(MapNotFoundError):
+        create_app(tmp_path / "absent")
+
+
+def test_serve_command_help() -> None:
+    app = typer.Typer()
+    app.command("serve")(serve)
+    out = CliRunner().invoke(app, ["--help"]).output
+    assert "--map" in out and "--host" in out and "8765" in out
+    missing = CliRunner().invoke(app, ["--map", "/nonexistent/map"])
+    assert missing.exit_code == 2 and "not found" in missing.output
