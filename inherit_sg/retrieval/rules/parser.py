@@ -14,6 +14,7 @@ from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import ClauseParser
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
+from inherit_sg.retrieval.rules.problems import split_problem
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import check_query_text, tokenize
 
@@ -21,14 +22,17 @@ from inherit_sg.retrieval.rules.tokens import check_query_text, tokenize
 def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
-    words = tokenize(text)
-    reason = global_reason(words)
+    problem, words = split_problem(tokenize(text))
+    reason = global_reason(words) if words or problem is None else None
     if reason is not None:
         return ParsedQuery(text=text, no_target_reason=reason, notes=("frame: global question",))
     refine, words = refine_frame(words)
     notes = ["frame: refinement of the previous request"] if refine else []
     tokens = tag(words)
     clause = ClauseParser(tokens, notes).parse(refine)
+    if problem is not None:
+        notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
+        clause.functions.append(problem)  # an explicit request ("where can I lie down") leads
     return assemble(text, clause, refine, notes, words)
 
 
