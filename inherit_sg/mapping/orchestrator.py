@@ -178,8 +178,7 @@ class Mapper:
                     f"hard: floor change {event.from_floor} → {event.to_floor}", "hard"
                 )
             elif isinstance(event, RoomEntered):
-                with self._lock:
-                    inside = [o.id for o in self.objects.nodes() if o.room_id == event.room_id]
+                inside = [o.id for o in self.objects_in(event.room_id)]
                 trigger, reason = self.supervisor.should_update(event.room_id, inside)
                 if trigger:
                     self._request_update(f"soft: {reason}", "soft")
@@ -267,7 +266,7 @@ class Mapper:
             self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
             for room in self.graph.nodes():
                 if room.id.startswith("room:"):
-                    inside = [o.id for o in self.objects.nodes() if o.room_id == room.id]
+                    inside = [o.id for o in self.objects_in(room.id)]
                     self.supervisor.summarised(room.id, inside)
             t1 = time.perf_counter()
             self._timings["update"] += t1 - t0

@@ -17,7 +17,7 @@ to neighbouring areas. Confidence falls off with the margin to each threshold.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,8 +125,3 @@ def infer_relations(
             if gap[i, j] <= NEAR_GAP:
                 out.append(Relation(ids[i], ids[j], "near", 1.0 - 0.5 * gap[i, j] / NEAR_GAP))
     return out
-
-
-def relation_edges(relations: Iterable[Relation]) -> list[Edge]:
-    """Graph edges for ``relations``."""
-    return [r.to_edge() for r in relations]

@@ -120,13 +120,6 @@ class SemanticStream:
             assigned.append((node_id, det))
         return assigned, stats
 
-    def process(
-        self, frame: Frame, floor_id: str | None
-    ) -> tuple[list[tuple[str, Detection]], KeyframeStats]:
-        """Observe and integrate one keyframe."""
-        observations, detections = self.observe_keyframe(frame)
-        return self.integrate(frame, observations, detections, floor_id)
-
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)
         crop = ObjectObservation.from_frame(frame, det, (extent[0], extent[1], extent[2]))
