@@ -5,7 +5,6 @@ against the house's ground truth."""
 
 from __future__ import annotations
 
-import json
 import shutil
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -14,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from ingest.synthetic.queries import QueryGT, read_queries
 from inherit_sg.errors import InputError
 
 # (category, sub-category preference) for the showcase, in the order they are shown
@@ -43,21 +43,21 @@ class ShowcaseAnswer:
     total_ms: float = 0.0
 
 
-def pick_requests(queries: list[dict[str, Any]]) -> list[tuple[str, str, str, list[list[float]]]]:
+def pick_requests(queries: list[QueryGT]) -> list[tuple[str, str, str, list[list[float]]]]:
     """A varied, deterministic selection: per showcase slot, the next unused request of
     that category (preferring different templates)."""
     used: set[str] = set()
     templates: set[str] = set()
     out = []
     for category, kind in SHOWCASE:
-        pool = [q for q in queries if q["category"] == category and q["id"] not in used]
-        fresh = [q for q in pool if q.get("template") not in templates] or pool
+        pool = [q for q in queries if q.category == category and q.id not in used]
+        fresh = [q for q in pool if q.template not in templates] or pool
         if not fresh:
             continue
         q = fresh[0]
-        used.add(q["id"])
-        templates.add(q.get("template", ""))
-        out.append((category, kind, q["text"], q["target_positions"]))
+        used.add(q.id)
+        templates.add(q.template)
+        out.append((category, kind, q.text, q.target_positions))
     return out
 
 
@@ -70,48 +70,27 @@ def _near(answer: dict[str, Any] | None, targets: list[list[float]]) -> bool:
 
 def run_showcase(map_dir: Path, dataset: Path) -> list[ShowcaseAnswer]:
     """Answer the showcase requests and a conversation follow-up on a built map."""
+    from ingest.synthetic.query_conversations import read_conversations
     from inherit_sg.facade import MapService
     from inherit_sg.retrieval.conversation import Conversation
 
-    queries = [
-        json.loads(line) for line in (dataset / "queries.jsonl").read_text().splitlines() if line
-    ]
-    convs = [
-        json.loads(line)
-        for line in (dataset / "conversations.jsonl").read_text().splitlines()
-        if line
-    ]
-    answers = []
+    conversation = Conversation()
     with MapService.open(map_dir) as service:
-        for category, kind, text, targets in pick_requests(queries):
-            res = service.query(text)
-            answers.append(
-                ShowcaseAnswer(
-                    category,
-                    kind,
-                    text,
-                    res.answer,
-                    _near(res.answer, targets),
-                    res.trace,
-                    res.timings_ms.get("total", 0.0),
-                )
+
+        def ask(
+            category: str, kind: str, text: str, targets: list[list[float]], follow: bool = False
+        ) -> ShowcaseAnswer:
+            res = service.query(text, conversation=conversation if follow else None)
+            total = res.timings_ms.get("total", 0.0)
+            return ShowcaseAnswer(
+                category, kind, text, res.answer, _near(res.answer, targets), res.trace, total
             )
-        turns: list[dict[str, Any]] = next((c["turns"] for c in convs if len(c["turns"]) >= 2), [])
-        conversation = Conversation()
+
+        answers = [ask(*request) for request in pick_requests(read_queries(dataset))]
+        turns = next((c.turns for c in read_conversations(dataset) if len(c.turns) >= 2), [])
         for i, turn in enumerate(turns[:2]):
-            res = service.query(turn["text"], conversation=conversation)
             kind = "conversation" if i == 0 else "conversation follow-up"
-            answers.append(
-                ShowcaseAnswer(
-                    "conv",
-                    kind,
-                    turn["text"],
-                    res.answer,
-                    _near(res.answer, turn["target_positions"]),
-                    res.trace,
-                    res.timings_ms.get("total", 0.0),
-                )
-            )
+            answers.append(ask("conv", kind, turn.text, turn.target_positions, follow=True))
     return answers
 
 

@@ -14,12 +14,12 @@ always excludes something: without its negated constraint the answer set is larg
 
 from __future__ import annotations
 
-import json
 import random
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ingest.synthetic.jsonl import read_jsonl, write_jsonl
 from ingest.synthetic.query_conversations import (
     CONVERSATIONS_FILE,
     ConversationGT,
@@ -32,7 +32,6 @@ from ingest.synthetic.query_mining import SceneFacts
 from ingest.synthetic.query_selection import Candidate, collect, fit_quotas, select_and_render
 from ingest.synthetic.scene import Scene
 from ingest.synthetic.truth import SceneIndex
-from inherit_sg.errors import DatasetError
 
 __all__ = [
     "CONVERSATIONS_FILE",
@@ -148,29 +147,9 @@ def category_shares(queries: list[QueryGT]) -> dict[str, float]:
 
 def write_queries(path: str | Path, queries: list[QueryGT]) -> Path:
     """Write ``queries`` as JSON lines to ``path`` (a file, or a folder → queries.jsonl)."""
-    out = Path(path)
-    if out.is_dir():
-        out = out / QUERIES_FILE
-    lines = [json.dumps(q.to_dict(), ensure_ascii=False) for q in queries]
-    out.write_text("\n".join(lines) + ("\n" if lines else ""), encoding="utf-8")
-    return out
+    return write_jsonl(path, QUERIES_FILE, (x.to_dict() for x in queries))
 
 
 def read_queries(path: str | Path) -> list[QueryGT]:
     """Read a ``queries.jsonl`` file (or the one in a folder)."""
-    src = Path(path)
-    if src.is_dir():
-        src = src / QUERIES_FILE
-    try:
-        text = src.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise DatasetError(f"no query set: {src} not found") from None
-    out = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        if not line.strip():
-            continue
-        try:
-            out.append(QueryGT.from_dict(json.loads(line)))
-        except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
-            raise DatasetError(f"{src}:{number}: malformed query: {exc}") from None
-    return out
+    return read_jsonl(path, QUERIES_FILE, QueryGT.from_dict, "query")

@@ -9,20 +9,19 @@ from the previous turn's.
 
 from __future__ import annotations
 
-import json
 import random
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from ingest.synthetic.jsonl import read_jsonl, write_jsonl
 from ingest.synthetic.query_mining import SceneFacts
 from ingest.synthetic.query_templates import RenderContext, render, templates_for
 from ingest.synthetic.query_text import Phrasing, display
 from ingest.synthetic.scene import ObjectGT, Scene
 from ingest.synthetic.truth import SceneIndex
 from ingest.synthetic.truth_spec import AttributeConstraint, FloorConstraint, ObjectSpec
-from inherit_sg.errors import DatasetError
 
 CONVERSATIONS_FILE = "conversations.jsonl"
 MAX_ANSWERS = 3
@@ -238,28 +237,9 @@ def _extend(
 
 def write_conversations(path: str | Path, conversations: list[ConversationGT]) -> Path:
     """Write JSON lines to ``path`` (a file, or a folder → conversations.jsonl)."""
-    out = Path(path)
-    if out.is_dir():
-        out = out / CONVERSATIONS_FILE
-    lines = [json.dumps(c.to_dict(), ensure_ascii=False) for c in conversations]
-    out.write_text("\n".join(lines) + ("\n" if lines else ""), encoding="utf-8")
-    return out
+    return write_jsonl(path, CONVERSATIONS_FILE, (x.to_dict() for x in conversations))
 
 
 def read_conversations(path: str | Path) -> list[ConversationGT]:
     """Read a ``conversations.jsonl`` file (or the one in a folder)."""
-    src = Path(path)
-    if src.is_dir():
-        src = src / CONVERSATIONS_FILE
-    try:
-        text = src.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise DatasetError(f"no conversations: {src} not found") from None
-    out = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        if line.strip():
-            try:
-                out.append(ConversationGT.from_dict(json.loads(line)))
-            except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
-                raise DatasetError(f"{src}:{number}: malformed conversation: {exc}") from None
-    return out
+    return read_jsonl(path, CONVERSATIONS_FILE, ConversationGT.from_dict, "conversation")
