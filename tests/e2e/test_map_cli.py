@@ -23,16 +23,17 @@ def run(*args: str, check: bool = True) -> subprocess.CompletedProcess[str]:
     return proc
 
 
-def test_spark_dsg_import_then_cypher_counts_seven_objects(real_data: Path, tmp_path: Path) -> None:
+@pytest.fixture
+def apartment(real_data: Path, tmp_path: Path) -> Path:
+    """The real Spark-DSG apartment imported through the CLI."""
     m = tmp_path / "apartment"
-    run(
-        "import",
-        "--format",
-        "spark-dsg",
-        str(real_data / "spark_dsg" / "apartment_dsg.json"),
-        "--map",
-        str(m),
-    )
+    src = real_data / "spark_dsg" / "apartment_dsg.json"
+    run("import", "--format", "spark-dsg", str(src), "--map", str(m))
+    return m
+
+
+def test_spark_dsg_import_then_cypher_counts_seven_objects(apartment: Path) -> None:
+    m = apartment
     out = json.loads(
         run("cypher", "--map", str(m), "MATCH (o:Object) RETURN count(o) AS n", "--json").stdout
     )
@@ -44,16 +45,8 @@ def test_spark_dsg_import_then_cypher_counts_seven_objects(real_data: Path, tmp_
     assert info["edges"]["HAS_OBJECT"] == 7 and info["bytes"]["total"] > 0
 
 
-def test_cypher_refuses_writes_and_reports_errors(real_data: Path, tmp_path: Path) -> None:
-    m = tmp_path / "apartment"
-    run(
-        "import",
-        "--format",
-        "spark-dsg",
-        str(real_data / "spark_dsg" / "apartment_dsg.json"),
-        "--map",
-        str(m),
-    )
+def test_cypher_refuses_writes_and_reports_errors(apartment: Path, tmp_path: Path) -> None:
+    m = apartment
     for query in (
         "MATCH (o:Object) SET o.label = 'x'",
         "CREATE (f:Floor {id: 'f9'})",
@@ -102,16 +95,8 @@ def test_export_import_round_trip_is_lossless(tmp_path: Path) -> None:
     assert again.returncode == 2
 
 
-def test_second_writer_gets_a_clear_lock_error(real_data: Path, tmp_path: Path) -> None:
-    m = tmp_path / "apartment"
-    run(
-        "import",
-        "--format",
-        "spark-dsg",
-        str(real_data / "spark_dsg" / "apartment_dsg.json"),
-        "--map",
-        str(m),
-    )
+def test_second_writer_gets_a_clear_lock_error(apartment: Path) -> None:
+    m = apartment
     holder = subprocess.Popen(
         [
             sys.executable,
