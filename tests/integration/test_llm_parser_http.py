@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import contextlib
 import json
-import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from typing import Any
 
 import pytest
@@ -23,6 +22,7 @@ from inherit_sg.errors import EndpointError
 from inherit_sg.llm import ChatClient
 from inherit_sg.retrieval import RelationConstraint
 from inherit_sg.retrieval.llm_parser import LLMParser
+from tests.local_http import serve_on_loopback
 
 TEXT = "the mug not on the table next to the window"
 
@@ -110,16 +110,9 @@ class _Handler(BaseHTTPRequestHandler):
 def server() -> Iterator[tuple[str, Script]]:
     script = Script(answers={"decomposition": DECOMPOSITION, "negations": NEGATIONS,
                              "weights": WEIGHTS})  # fmt: skip
-    httpd = ThreadingHTTPServer(("127.0.0.1", 0), _Handler)
-    httpd.daemon_threads = True
-    httpd.script = script  # type: ignore[attr-defined]
-    thread = threading.Thread(
-        target=httpd.serve_forever, kwargs={"poll_interval": 0.02}, daemon=True
-    )
-    thread.start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}/v1", script
-    httpd.shutdown()
-    httpd.server_close()
+    with serve_on_loopback(_Handler) as (httpd, url):
+        httpd.script = script  # type: ignore[attr-defined]
+        yield url, script
 
 
 def _parser(endpoint: str, **kwargs: Any) -> LLMParser:

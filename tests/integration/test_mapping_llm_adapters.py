@@ -6,11 +6,10 @@ from __future__ import annotations
 import base64
 import json
 import re
-import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from typing import Any
 
 import cv2
@@ -31,6 +30,7 @@ from inherit_sg.mapping.relation_verifier import GeometricVerifier, VlmRelationV
 from inherit_sg.mapping.relations import Relation
 from inherit_sg.mapping.supervisor import HeuristicSupervisor
 from inherit_sg.mapping.vlm_supervisor import VlmSupervisor
+from tests.local_http import serve_on_loopback
 
 Reply = Callable[[dict[str, Any]], str]
 
@@ -77,15 +77,8 @@ def _handler(state: ServerState) -> type[BaseHTTPRequestHandler]:
 @pytest.fixture
 def server() -> Iterator[tuple[str, ServerState]]:
     state = ServerState()
-    httpd = ThreadingHTTPServer(("127.0.0.1", 0), _handler(state))
-    httpd.daemon_threads = True
-    thread = threading.Thread(target=httpd.serve_forever, args=(0.02,), daemon=True)
-    thread.start()
-    try:
-        yield f"http://127.0.0.1:{httpd.server_address[1]}/v1", state
-    finally:
-        httpd.shutdown()
-        httpd.server_close()
+    with serve_on_loopback(_handler(state)) as (_, url):
+        yield url, state
 
 
 def _client(url: str) -> ChatClient:

@@ -5,11 +5,10 @@ from __future__ import annotations
 import base64
 import json
 import socket
-import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from typing import Any
 
 import cv2
@@ -24,6 +23,7 @@ from inherit_sg.perception.base import ObjectObservation
 from inherit_sg.perception.colour_names import colour_name
 from inherit_sg.perception.describer import FallbackDescriber, TemplateDescriber
 from inherit_sg.perception.vlm_describer import VlmDescriber, clean_answer, image_data_url
+from tests.local_http import serve_on_loopback
 
 
 @dataclass
@@ -101,15 +101,8 @@ def _handler(state: ServerState) -> type[BaseHTTPRequestHandler]:
 @pytest.fixture
 def server() -> Iterator[tuple[str, ServerState]]:
     state = ServerState()
-    httpd = ThreadingHTTPServer(("127.0.0.1", 0), _handler(state))
-    httpd.daemon_threads = True
-    thread = threading.Thread(target=httpd.serve_forever, args=(0.02,), daemon=True)
-    thread.start()
-    try:
-        yield f"http://127.0.0.1:{httpd.server_address[1]}/v1", state
-    finally:
-        httpd.shutdown()
-        httpd.server_close()
+    with serve_on_loopback(_handler(state)) as (_, url):
+        yield url, state
 
 
 def _obs(label: str = "chair", room: str | None = "kitchen") -> ObjectObservation:
