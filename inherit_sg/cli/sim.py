@@ -58,6 +58,23 @@ class NoiseLevel(StrEnum):
     noisy = "noisy"
 
 
+# Options shared by the commands that render walks.
+NoiseOption = Annotated[NoiseLevel, typer.Option(help="Perception noise level.")]
+WidthOption = Annotated[int, typer.Option(min=16, max=4096, help="Image width.")]
+HeightOption = Annotated[int, typer.Option(min=16, max=4096, help="Image height.")]
+WorkersOption = Annotated[
+    int | None, typer.Option(min=1, help="Render processes (default: one per core).")
+]
+MaxFramesOption = Annotated[
+    int | None, typer.Option(min=1, help="Keep only the first N frames of the walk.")
+]
+ShadowsOption = Annotated[
+    bool, typer.Option("--shadows", help="Cast shadows from the room lights (slower).")
+]
+ForceOption = Annotated[bool, typer.Option("--force", help="Overwrite an existing dataset.")]
+JsonOption = Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")]
+
+
 def _prepare_out(out: Path, force: bool) -> None:
     if out.exists() and not out.is_dir():
         raise InputError(f"output path {out} exists and is not a directory")
@@ -83,20 +100,14 @@ def generate(
         int | None,
         typer.Option(min=4, max=12, help="Rooms per storey incl. the hallway (default 5-8)."),
     ] = None,
-    noise: Annotated[NoiseLevel, typer.Option(help="Perception noise level.")] = NoiseLevel.clean,
-    width: Annotated[int, typer.Option(min=16, max=4096, help="Image width.")] = 640,
-    height: Annotated[int, typer.Option(min=16, max=4096, help="Image height.")] = 480,
-    workers: Annotated[
-        int | None, typer.Option(min=1, help="Render processes (default: one per core).")
-    ] = None,
-    max_frames: Annotated[
-        int | None, typer.Option(min=1, help="Keep only the first N frames of the walk.")
-    ] = None,
-    shadows: Annotated[
-        bool, typer.Option("--shadows", help="Cast shadows from the room lights (slower).")
-    ] = False,
-    force: Annotated[bool, typer.Option("--force", help="Overwrite an existing dataset.")] = False,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+    noise: NoiseOption = NoiseLevel.clean,
+    width: WidthOption = 640,
+    height: HeightOption = 480,
+    workers: WorkersOption = None,
+    max_frames: MaxFramesOption = None,
+    shadows: ShadowsOption = False,
+    force: ForceOption = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Generate a house, walk through every room and write an isg dataset folder."""
     from ingest.synthetic.generate import generate_house, write_dataset
@@ -129,20 +140,14 @@ def render_house(
     ],
     out: Annotated[Path, typer.Option("--out", "-o", help="Dataset folder to write.")],
     seed: Annotated[int, typer.Option(min=0, help="Random seed of the walk and the noise.")] = 0,
-    noise: Annotated[NoiseLevel, typer.Option(help="Perception noise level.")] = NoiseLevel.clean,
-    width: Annotated[int, typer.Option(min=16, max=4096, help="Image width.")] = 640,
-    height: Annotated[int, typer.Option(min=16, max=4096, help="Image height.")] = 480,
-    workers: Annotated[
-        int | None, typer.Option(min=1, help="Render processes (default: one per core).")
-    ] = None,
-    max_frames: Annotated[
-        int | None, typer.Option(min=1, help="Keep only the first N frames of the walk.")
-    ] = None,
-    shadows: Annotated[
-        bool, typer.Option("--shadows", help="Cast shadows from the room lights (slower).")
-    ] = False,
-    force: Annotated[bool, typer.Option("--force", help="Overwrite an existing dataset.")] = False,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+    noise: NoiseOption = NoiseLevel.clean,
+    width: WidthOption = 640,
+    height: HeightOption = 480,
+    workers: WorkersOption = None,
+    max_frames: MaxFramesOption = None,
+    shadows: ShadowsOption = False,
+    force: ForceOption = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Render a Matterport3D house into an isg dataset with ground truth and queries.
 
