@@ -267,9 +267,10 @@ def build_map(
         else MapStore.create(path, cfg)
     )
     with store:
-        index = len(store.sessions()) + 1
+        earlier = store.sessions()
+        index = len(earlier) + 1
         name = session_name or f"session-{index}"
-        if any(s.name == name for s in store.sessions()):
+        if any(s.name == name for s in earlier):
             raise InputError(f"map {path} already has a session named {name!r}")
         session = Session(
             id=f"session:{index}", name=name, started=time.time(), dataset=str(dataset)
