@@ -14,6 +14,7 @@ from typing import Annotated, Any
 from fastapi import FastAPI, Query, Request
 from fastapi.responses import JSONResponse
 
+from api import live, security, views
 from api.errors import install_error_handlers
 from api.models import (
     CypherRequest,
@@ -50,6 +51,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
 
     app = FastAPI(title="INHerit-SG", version=__version__, lifespan=lifespan)
     install_error_handlers(app)
+    security.install(app, cfg)
 
     @app.get("/healthz")
     def healthz() -> HealthResponse:
@@ -126,4 +128,6 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         with served.lock:
             return get_object(served.require(), object_id)
 
+    app.include_router(live.router)
+    views.install(app)
     return app

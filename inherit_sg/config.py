@@ -90,6 +90,12 @@ class RetrievalConfig(_Section):
     verify: bool = True
     verify_depth: int = Field(3, ge=1)
     top_k: int = Field(10, ge=1)
+    use_areas: bool = Field(
+        True, description="use functional-area nodes (L2) in candidates and scoring (ablation)"
+    )
+    verify_segmenter: bool = Field(
+        True, description="verification grounds the target label on the keyframe first"
+    )
 
 
 class ServiceConfig(_Section):
