@@ -21,6 +21,10 @@ def demo(
     height: Annotated[int, typer.Option(help="Rendered image height.")] = 240,
     force: Annotated[bool, typer.Option(help="Replace an earlier demo in OUT.")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print a JSON summary instead.")] = False,
+    serve: Annotated[
+        bool, typer.Option("--serve", help="Afterwards, serve the map and its web viewer.")
+    ] = False,
+    port: Annotated[int, typer.Option(min=1, max=65535, help="Port for --serve.")] = 8765,
 ) -> None:
     """Generate a two-floor house, map it with the offline defaults, answer showcase
     requests of every kind (each checked against the ground truth), write BEV pictures."""
@@ -77,6 +81,10 @@ def demo(
         f'Next: inherit-sg query --map {out / "map"} "..." --explain   ·   '
         f'inherit-sg cypher --map {out / "map"} "MATCH (r:Room) RETURN r.label, r.summary"'
     )
+    console.print(
+        f"Viewer: inherit-sg serve --map {out / 'map'}  then open http://127.0.0.1:{port}/"
+        + ("" if serve else "   (or run the demo with --serve)")
+    )
     console.print(f"[dim]demo finished in {time.perf_counter() - start:.0f} s[/dim]")
     if as_json:
         print_json(
@@ -87,3 +95,10 @@ def demo(
                 "seconds": round(time.perf_counter() - start, 1),
             }
         )
+    if serve:
+        import uvicorn
+
+        from api.app import create_app
+
+        console.print(f"serving {out / 'map'} at http://127.0.0.1:{port}/ (Ctrl-C stops)")
+        uvicorn.run(create_app(out / "map"), host="127.0.0.1", port=port, log_level="warning")
