@@ -25,7 +25,7 @@ import cv2
 import numpy as np
 
 from inherit_sg.config import Config
-from inherit_sg.errors import InheritSGError
+from inherit_sg.errors import ConfigError, InheritSGError
 from inherit_sg.geometry.events import FloorChanged, RoomEntered
 from inherit_sg.geometry.gating import PendingKeyframe
 from inherit_sg.mapping.adapters import (
@@ -122,9 +122,9 @@ class Mapper:
         if backpressure == "block":
             new_queue(self.geometry, max(8, config.geometry.queue_capacity))
         describer = create_describer(config)
-        self.semantic = SemanticStream(
-            create_segmenter(config), create_visual_encoder(config), describer, self.objects
-        )
+        encoder = create_visual_encoder(config)
+        _check_feature_sizes(store, encoder.dim, encoder.image_dim, encoder.name)
+        self.semantic = SemanticStream(create_segmenter(config), encoder, describer, self.objects)
         verifier = create_relation_verifier(config)
         self.builder = HierarchyBuilder(
             self.embedder,
@@ -381,6 +381,18 @@ class Mapper:
     def _report(self) -> None:
         if self._progress_cb is not None:
             self._progress_cb(self.progress)
+
+
+def _check_feature_sizes(store: MapStore, dim: int, image_dim: int, encoder: str) -> None:
+    """A map keeps one feature size; a different encoder must not write into it."""
+    info = store.info
+    if (dim, image_dim) != (info.visual_dim, info.image_feature_dim):
+        raise ConfigError(
+            f"map {store.path} stores {info.visual_dim}-d object and {info.image_feature_dim}-d "
+            f"image features (encoder {info.visual_encoder!r}) but encoder {encoder!r} gives "
+            f"{dim}-d and {image_dim}-d; map into a new map created with "
+            f"--set store.visual_dim={dim} --set store.image_feature_dim={image_dim}"
+        )
 
 
 def encode_keyframe(rgb: np.ndarray, max_side: int, quality: int) -> bytes:
