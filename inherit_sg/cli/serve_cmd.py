@@ -1,16 +1,45 @@
 """``inherit-sg serve --map DIR``: serve a map (or a folder of maps) over REST.
 
-Register on the main app with ``app.command("serve")(serve_cmd.serve)``.
+Host and port default to ``service.host`` / ``service.port`` of the configuration (TOML
+file, ``INHERIT_SG_SERVICE__*`` environment variables, ``--set``); ``--host`` and
+``--port`` override them. Register on the main app with
+``app.command("serve")(serve_cmd.serve)``.
 """
 
 from __future__ import annotations
 
+import ipaddress
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from inherit_sg.cli.output import handle_errors
+from inherit_sg.config import Config
+
+LOOPBACK_NAMES = frozenset({"localhost", "localhost.localdomain", "ip6-localhost"})
+
+
+def is_loopback(host: str) -> bool:
+    """True when ``host`` names a loopback interface only."""
+    name = host.strip().strip("[]").lower()
+    if name in LOOPBACK_NAMES:
+        return True
+    try:
+        return ipaddress.ip_address(name).is_loopback
+    except ValueError:
+        return False
+
+
+def exposure_warning(host: str, config: Config) -> str | None:
+    """A warning when ``host`` is reachable from other machines and no API key is set."""
+    svc = config.service
+    if is_loopback(host) or svc.read_keys or svc.write_keys:
+        return None
+    return (
+        f"warning: serving on {host} without API keys — anyone who can reach this port can "
+        "read the maps and run Cypher; set service.read_keys / service.write_keys"
+    )
 
 
 @handle_errors
@@ -18,16 +47,33 @@ def serve(
     map_dir: Annotated[
         Path, typer.Option("--map", "-m", help="A map directory, or a folder of maps.")
     ],
-    host: Annotated[str, typer.Option(help="Interface to bind (loopback by default).")] = (
-        "127.0.0.1"
-    ),
-    port: Annotated[int, typer.Option(min=1, max=65535, help="TCP port.")] = 8765,
+    host: Annotated[
+        str | None,
+        typer.Option(help="Interface to bind [default: service.host, 127.0.0.1]."),
+    ] = None,
+    port: Annotated[
+        int | None,
+        typer.Option(min=1, max=65535, help="TCP port [default: service.port, 8765]."),
+    ] = None,
+    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
+    overrides: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Config override section.field=value (repeatable)."),
+    ] = None,
 ) -> None:
     """Serve maps read-only at http://HOST:PORT/v1/maps/{name} (name = directory name)."""
     import uvicorn
 
     from api.app import create_app
+    from inherit_sg.config import load_config
 
-    app = create_app(map_dir)
-    typer.echo(f"serving {map_dir} at http://{host}:{port}/v1/maps/")
-    uvicorn.run(app, host=host, port=port, log_level="info")
+    cfg = load_config(config_file, overrides or [])
+    bind_host = host if host is not None else cfg.service.host
+    bind_port = port if port is not None else cfg.service.port
+    app = create_app(map_dir, cfg)
+    warning = exposure_warning(bind_host, cfg)
+    if warning is not None:
+        typer.secho(warning, fg=typer.colors.YELLOW, err=True)
+    shown = f"[{bind_host}]" if ":" in bind_host else bind_host
+    typer.echo(f"serving {map_dir} at http://{shown}:{bind_port}/v1/maps/")
+    uvicorn.run(app, host=bind_host, port=bind_port, log_level="info")

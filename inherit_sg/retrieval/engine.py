@@ -28,7 +28,14 @@ from inherit_sg.retrieval.scoring import Scored, Scorer, landmark_quality
 from inherit_sg.retrieval.similarity import Embedder, PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, load_snapshot, map_version
 from inherit_sg.retrieval.trace import describe_query, explain_ranking
-from inherit_sg.retrieval.verify import Evidence, OfflineVerifier, Verifier, decode_jpeg, ground
+from inherit_sg.retrieval.verify import (
+    Evidence,
+    OfflineVerifier,
+    Verifier,
+    decode_jpeg,
+    ground,
+    skip_grounding,
+)
 from inherit_sg.store import MapStore
 
 
@@ -159,7 +166,7 @@ class QueryEngine:
         version = map_version(self.store.path)
         with self._lock:
             if self._snap is None or self._snap.version != version:
-                self._snap = load_snapshot(self.store)
+                self._snap = load_snapshot(self.store, use_areas=self.config.retrieval.use_areas)
                 self._checker = GraphChecker(self._snap)
             assert self._checker is not None
             return self._snap, self._checker
@@ -278,21 +285,26 @@ class QueryEngine:
     ) -> tuple[Scored | None, bool | None]:
         """The answer: the first of the top ``verify_depth`` candidates that passes
         visual verification (the top one, unverified, when verification is off or none
-        passes)."""
+        passes). With ``retrieval.verify_segmenter`` off the target label is not
+        grounded first: the verifier alone judges the recorded detection's crop."""
         if not ranked:
             return None, None
         if not verify:
             return ranked[0], None
         depth = self.config.retrieval.verify_depth
-        segmenter = self._get_segmenter(trace)
+        use_segmenter = self.config.retrieval.verify_segmenter
+        segmenter = self._get_segmenter(trace) if use_segmenter else None
         for cand in ranked[:depth]:
             node = snap.objects.get(cand.id)
             if node is None:
                 trace.append(f"verify {cand.id}: not an object, nothing to check visually")
                 return cand, None
             ev = self._evidence(snap, node, spec, cand, text)
-            prompts = [node.label, *sorted(ev.wanted_labels() - {node.label})][:4]
-            found, why, box = ground(ev, segmenter, prompts)
+            if use_segmenter:
+                prompts = [node.label, *sorted(ev.wanted_labels() - {node.label})][:4]
+                found, why, box = ground(ev, segmenter, prompts)
+            else:
+                found, why, box = skip_grounding(ev)
             if found is None:
                 trace.append(f"verify {cand.id}: unverified ({why}); kept")
                 return cand, None

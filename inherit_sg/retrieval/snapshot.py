@@ -59,6 +59,7 @@ class MapSnapshot:
 
     version: Version
     graph: SceneGraph
+    use_areas: bool = True
     objects: dict[str, ObjectNode] = field(default_factory=dict)
     rooms: dict[str, RoomNode] = field(default_factory=dict)
     areas: dict[str, AreaNode] = field(default_factory=dict)
@@ -157,9 +158,15 @@ def _index_objects(snap: MapSnapshot) -> None:
     snap.level = np.array([-1 if lv is None else lv for lv in levels], dtype=int)
 
 
-def build_snapshot(graph: SceneGraph, version: Version = ()) -> MapSnapshot:
-    """Index ``graph`` for retrieval (removed objects are left out)."""
-    snap = MapSnapshot(version=version, graph=graph)
+def build_snapshot(
+    graph: SceneGraph, version: Version = (), *, use_areas: bool = True
+) -> MapSnapshot:
+    """Index ``graph`` for retrieval (removed objects are left out). With ``use_areas``
+    off, functional-area nodes are left out too (the "w/o functional areas" ablation):
+    objects hang directly under their rooms, and no area can be a candidate, a
+    constraint match or a relation landmark."""
+    snap = MapSnapshot(version=version, graph=graph, use_areas=use_areas)
+    area_room: dict[str, str | None] = {}
     for node in graph.nodes():
         if isinstance(node, ObjectNode):
             if node.status != ObjectStatus.REMOVED:
@@ -167,23 +174,28 @@ def build_snapshot(graph: SceneGraph, version: Version = ()) -> MapSnapshot:
         elif isinstance(node, RoomNode):
             snap.rooms[node.id] = node
         elif isinstance(node, AreaNode):
-            snap.areas[node.id] = node
+            area_room[node.id] = node.room_id or graph.parent(node.id)
+            if use_areas:
+                snap.areas[node.id] = node
         elif isinstance(node, FloorNode):
             snap.floors[node.id] = node
     for rid, room in snap.rooms.items():
         snap.floor_of[rid] = room.floor_id or graph.parent(rid)
         snap.room_types[rid] = room_type(room.label.lower()) if room.label else None
         snap.room_of[rid] = rid
-    for aid, area in snap.areas.items():
-        parent_room: str | None = area.room_id or graph.parent(aid)
+    for aid in snap.areas:
+        parent_room = area_room.get(aid)
         snap.room_of[aid] = parent_room
         snap.area_of[aid] = aid
         snap.floor_of[aid] = snap.floor_of.get(parent_room) if parent_room else None
     for fid in snap.floors:
         snap.floor_of[fid] = fid
     for oid, obj in snap.objects.items():
-        area_id: str | None = obj.area_id or graph.parent(oid)
-        room_id = obj.room_id or (snap.room_of.get(area_id) if area_id else None)
+        parent = obj.area_id or graph.parent(oid)
+        area_id = parent if parent in snap.areas else None
+        room_id = (
+            obj.room_id or area_room.get(parent or "") or (parent if parent in snap.rooms else None)
+        )
         snap.area_of[oid] = area_id
         snap.room_of[oid] = room_id
         snap.floor_of[oid] = obj.floor_id or (snap.floor_of.get(room_id) if room_id else None)
@@ -205,8 +217,8 @@ def build_snapshot(graph: SceneGraph, version: Version = ()) -> MapSnapshot:
     return snap
 
 
-def load_snapshot(store: MapStore) -> MapSnapshot:
+def load_snapshot(store: MapStore, *, use_areas: bool = True) -> MapSnapshot:
     """Read the whole map once and index it (the version is taken before reading, so a
     write racing with the read only causes one extra reload later)."""
     version = map_version(store.path)
-    return build_snapshot(store.load_graph(), version)
+    return build_snapshot(store.load_graph(), version, use_areas=use_areas)

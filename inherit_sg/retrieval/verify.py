@@ -191,3 +191,11 @@ def ground(
     if wanted and label and label not in wanted and label != ev.node.label:
         return False, f"{ev.keyframe.id} shows a {label}, not a {'/'.join(sorted(wanted))}", None
     return True, f"{ev.keyframe.id} shows a {label or ev.node.label}", recorded_box(ev)
+
+
+def skip_grounding(ev: Evidence) -> tuple[bool | None, str, Box | None]:
+    """No segmenter step (``retrieval.verify_segmenter`` off): the target label is not
+    looked for; the verifier gets the keyframe with the box recorded at mapping time."""
+    if ev.keyframe is None:
+        return None, "no keyframe to verify against", None
+    return True, f"grounding skipped on {ev.keyframe.id}", recorded_box(ev)

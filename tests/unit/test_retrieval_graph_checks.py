@@ -27,6 +27,14 @@ def test_snapshot_indexes_hierarchy_labels_and_floors() -> None:
     assert "near" in snap.related("obj:c1", "obj:t1") and "near" in snap.related("obj:t1", "obj:c1")
 
 
+def test_snapshot_without_areas_hangs_objects_under_rooms() -> None:
+    snap = build_snapshot(small_graph(), (1,), use_areas=False)
+    assert snap.areas == {} and not snap.use_areas
+    assert snap.area_of["obj:m1"] is None and snap.room_of["obj:m1"] == "room:kitchen"
+    assert snap.level_of("obj:tl1") == 1 and snap.node("area:a_breakfast") is None
+    assert len(snap.objects) == len(small_snapshot().objects)
+
+
 def test_map_version_changes_with_files(tmp_path: Path) -> None:
     (tmp_path / "map.json").write_text("{}")
     first = map_version(tmp_path)

@@ -25,6 +25,7 @@ from inherit_sg.retrieval.verify import (
     graph_failures,
     ground,
     recorded_box,
+    skip_grounding,
 )
 from inherit_sg.retrieval.verify_vlm import VlmVerifier, outlined
 from tests.unit.retrieval_fixtures import hash_similarity, small_snapshot
@@ -141,3 +142,13 @@ def test_vlm_verifier_falls_back_offline_when_the_endpoint_is_down() -> None:
     assert ev.image is not None
     drawn = outlined(ev.image, (10, 10, 50, 50))
     assert tuple(drawn[10, 30]) == (0, 255, 0) and tuple(ev.image[10, 30]) != (0, 255, 0)
+
+
+def test_skipping_the_segmenter_step_keeps_the_recorded_box() -> None:
+    ev = evidence("the red chair", "obj:c3", RED, {"label": "table", "bbox": [100, 60, 199, 179]})
+    assert ground(ev, None, ["chair"])[0] is False  # the label does not ground
+    ok, why, box = skip_grounding(ev)
+    assert ok is True and "skipped" in why and box == (100, 60, 199, 179)
+    assert OfflineVerifier().verify(ev, box).ok is True
+    ev.keyframe = None
+    assert skip_grounding(ev)[0] is None
