@@ -37,6 +37,8 @@ def list_objects(
             params[name] = value
     clause = f" WHERE {' AND '.join(where)}" if where else ""
     total = service.cypher(f"MATCH (o:Object){clause} RETURN count(o)", params).rows[0][0]
+    if offset >= total:  # past the end: nothing to fetch (and no large SKIP for Kuzu)
+        return ObjectPage(objects=[], total=int(total), limit=limit, offset=offset)
     page = service.cypher(
         f"MATCH (o:Object){clause} RETURN {_FIELDS} ORDER BY o.id SKIP $offset LIMIT $limit",
         {**params, "offset": offset, "limit": limit},

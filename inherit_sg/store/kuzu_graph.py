@@ -19,6 +19,7 @@ from inherit_sg.errors import CypherError, MapError
 from inherit_sg.store.cypher_lex import split_statements
 from inherit_sg.store.kuzu_util import next_row, run, translate
 from inherit_sg.store.readonly import check_read_only
+from inherit_sg.store.skip_guard import check_skip
 
 
 def _buffer_pool_bytes() -> int:
@@ -125,6 +126,7 @@ class KuzuGraph:
         statements = split_statements(query)
         if len(statements) != 1:
             raise CypherError(f"expected one Cypher statement, got {len(statements)}")
+        check_skip(query, params)
         if read_only:
             check_read_only(query)
             with self.snapshot() as conn:

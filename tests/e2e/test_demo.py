@@ -61,9 +61,7 @@ def test_demo_builds_answers_and_serves(tmp_path: Path) -> None:
         _wait_ready(base, proc, timeout_s=300)
         stats = httpx.get(f"{base}/v1/maps/map", timeout=10).json()
         assert stats["nodes"]["Floor"] == 2 and stats["nodes"]["Object"] > 20
-        answer = httpx.post(
-            f"{base}/v1/maps/map/query", json={"text": "a bed"}, timeout=30
-        ).json()
+        answer = httpx.post(f"{base}/v1/maps/map/query", json={"text": "a bed"}, timeout=30).json()
         assert answer["answer"]["label"] == "bed"
     finally:
         proc.send_signal(signal.SIGINT)
