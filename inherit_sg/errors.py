@@ -125,6 +125,13 @@ class BackPressureError(InheritSGError):
         self.retry_after_s = retry_after_s
 
 
+class IntakeFullError(BackPressureError):
+    """A live session's frame intake is saturated; the client should slow down."""
+
+    http_status = 429
+    code = "too_many_frames"
+
+
 class ModelUnavailableError(InheritSGError):
     """A model backend cannot be loaded (missing local path, missing package)."""
 

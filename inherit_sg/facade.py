@@ -15,6 +15,7 @@ from inherit_sg.store import CypherResult, MapStore
 if TYPE_CHECKING:
     import numpy as np
 
+    from inherit_sg.mapping.live import LiveSession
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
 
@@ -115,6 +116,19 @@ class MapService:
             top_k=top_k,
             explain=explain,
             image=image,
+        )
+
+    def live_session(
+        self, name: str | None = None, *, frame_queue: int = 8, flush_every: int = 20
+    ) -> LiveSession:
+        """Start a live mapping session on this map (opened with ``write=True``): frames
+        go in through :meth:`LiveSession.submit`, queries keep working on this service
+        and see the session's objects after each flush (every ``flush_every`` keyframes
+        and every global update)."""
+        from inherit_sg.mapping.live import LiveSession
+
+        return LiveSession(
+            self.store, self.config, name=name, frame_queue=frame_queue, flush_every=flush_every
         )
 
     # ------------------------------------------------------------ export

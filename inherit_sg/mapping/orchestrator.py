@@ -150,7 +150,7 @@ class Mapper:
     def run(self, frames: Iterable[Frame]) -> BuildSummary:
         """Consume every frame, then finish the session (final update and flush)."""
         start = time.perf_counter()
-        self._worker.start()
+        self.start()
         try:
             for frame in frames:
                 self._raise_worker_error()
@@ -160,6 +160,27 @@ class Mapper:
             self._worker.join()
         self._raise_worker_error()
         return self.finish(time.perf_counter() - start)
+
+    def start(self) -> None:
+        """Start the semantic worker (live sessions; :meth:`run` starts it itself)."""
+        self._worker.start()
+
+    def drain(self) -> None:
+        """Close the keyframe queue, wait until the worker has emptied it and surface
+        its error, if any; call :meth:`finish` next."""
+        self.geometry.queue.close()
+        if self._worker.is_alive():
+            self._worker.join()
+        self._raise_worker_error()
+
+    def check(self) -> None:
+        """Raise the semantic worker's error, if it failed (live sessions poll this)."""
+        self._raise_worker_error()
+
+    @property
+    def worker_alive(self) -> bool:
+        """Whether the semantic worker thread is running."""
+        return self._worker.is_alive()
 
     def process_frame(self, frame: Frame) -> None:
         """Geometric stream on one frame; schedules updates on trigger events."""
