@@ -2,8 +2,171 @@
 
 from __future__ import annotations
 
-from fastapi import FastAPI
+from pathlib import Path
+from typing import Annotated, Literal
+
+from fastapi import FastAPI, Query, Request
+from fastapi.responses import FileResponse, Response
+from fastapi.staticfiles import StaticFiles
+from pydantic import BaseModel
+
+from api import pictures
+from api.hierarchy import build_hierarchy
+from api.listing import list_areas, list_floors, list_rooms
+from api.state import Registry, ServedMap
+from api.view_models import AreaPage, FloorPage, Hierarchy, RoomPage
+
+STATIC = Path(__file__).resolve().parent / "static"
+
+Limit = Annotated[int, Query(ge=1, le=1000)]
+Offset = Annotated[int, Query(ge=0)]
+FloorQ = Annotated[str | None, Query(description="Floor id, e.g. floor:0.")]
+RoomQ = Annotated[str | None, Query(description="Room id.")]
+LabelQ = Annotated[str | None, Query(description="Label (any case).")]
+
+
+class MapEntry(BaseModel):
+    """A served map and whether it is open."""
+
+    name: str
+    status: str
+
+
+class MapList(BaseModel):
+    """The maps this server serves."""
+
+    maps: list[MapEntry]
+
+
+def _served(request: Request, name: str) -> ServedMap:
+    registry: Registry = request.app.state.registry
+    return registry.get(name)
 
 
 def install(app: FastAPI) -> None:
     """Add the viewer's routes and static files to ``app``."""
+
+    @app.get("/", include_in_schema=False)
+    def index() -> FileResponse:
+        """The viewer page."""
+        return FileResponse(STATIC / "index.html", media_type="text/html")
+
+    @app.get("/v1/maps")
+    def maps(request: Request) -> MapList:
+        """The served maps, by name, with 'ok' or the reason a map did not open."""
+        registry: Registry = request.app.state.registry
+        return MapList(
+            maps=[
+                MapEntry(
+                    name=name,
+                    status="ok"
+                    if s.service is not None
+                    else (s.error.message if s.error else "closed"),
+                )
+                for name, s in registry.maps.items()
+            ]
+        )
+
+    @app.get("/v1/maps/{map}/floors")
+    def floors(
+        request: Request, map: str, label: LabelQ = None, limit: Limit = 100, offset: Offset = 0
+    ) -> FloorPage:
+        """A page of floors (by id) with room and object counts."""
+        served = _served(request, map)
+        with served.lock:
+            return list_floors(served.require(), label=label, limit=limit, offset=offset)
+
+    @app.get("/v1/maps/{map}/rooms")
+    def rooms(
+        request: Request,
+        map: str,
+        floor: FloorQ = None,
+        label: LabelQ = None,
+        limit: Limit = 100,
+        offset: Offset = 0,
+    ) -> RoomPage:
+        """A page of rooms (by id) with summary, floor, best view and child counts."""
+        served = _served(request, map)
+        with served.lock:
+            return list_rooms(
+                served.require(), floor=floor, label=label, limit=limit, offset=offset
+            )
+
+    @app.get("/v1/maps/{map}/areas")
+    def areas(
+        request: Request,
+        map: str,
+        floor: FloorQ = None,
+        room: RoomQ = None,
+        label: LabelQ = None,
+        limit: Limit = 100,
+        offset: Offset = 0,
+    ) -> AreaPage:
+        """A page of functional areas (by id) with summary, room, floor and object count."""
+        served = _served(request, map)
+        with served.lock:
+            return list_areas(
+                served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
+            )
+
+    @app.get("/v1/maps/{map}/hierarchy")
+    def hierarchy(request: Request, map: str) -> Hierarchy:
+        """Floors → rooms → areas → objects, ids and labels only."""
+        served = _served(request, map)
+        with served.lock:
+            return build_hierarchy(served.require())
+
+    @app.get(
+        "/v1/maps/{map}/bev.png",
+        response_class=Response,
+        responses={200: {"content": {"image/png": {}}}},
+    )
+    def bev(
+        request: Request,
+        map: str,
+        floor: Annotated[str, Query(description="Floor id, e.g. floor:0.")],
+        source: Annotated[
+            Literal["graph", "stored"],
+            Query(
+                description="'graph': drawn from room masks and objects, with X-BEV-* "
+                "transform headers; 'stored': the picture `map build` wrote (no transform)."
+            ),
+        ] = "graph",
+    ) -> Response:
+        """The bird's-eye view of one floor as PNG."""
+        served = _served(request, map)
+        with served.lock:
+            if source == "stored":
+                return Response(
+                    pictures.stored_bev(served.require(), floor), media_type="image/png"
+                )
+            png, tf = pictures.graph_bev(served.require(), floor)
+        return Response(png, media_type="image/png", headers=tf.headers())
+
+    @app.get(
+        "/v1/maps/{map}/keyframes/{keyframe_id}.jpg",
+        response_class=Response,
+        responses={200: {"content": {"image/jpeg": {}}}},
+    )
+    def keyframe(request: Request, map: str, keyframe_id: str) -> Response:
+        """One keyframe's JPEG (ids like ``kf:session:1:25``, URL-encoded or not)."""
+        served = _served(request, map)
+        with served.lock:
+            jpeg = pictures.keyframe_jpeg(served.require(), keyframe_id)
+        return Response(jpeg, media_type="image/jpeg")
+
+    @app.get(
+        "/v1/maps/{map}/nodes/{node_id}/view.jpg",
+        response_class=Response,
+        responses={200: {"content": {"image/jpeg": {}}}},
+    )
+    def best_view(request: Request, map: str, node_id: str) -> Response:
+        """The best-view keyframe of an object or room; its id in ``X-Keyframe-Id``."""
+        served = _served(request, map)
+        with served.lock:
+            service = served.require()
+            kf_id = pictures.best_view(service, node_id)
+            jpeg = pictures.keyframe_jpeg(service, kf_id)
+        return Response(jpeg, media_type="image/jpeg", headers={"X-Keyframe-Id": kf_id})
+
+    app.mount("/static", StaticFiles(directory=STATIC), name="static")

@@ -20,6 +20,10 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from inherit_sg.errors import ConfigError
 
 ENV_PREFIX = "INHERIT_SG_"
+# INHERIT_SG_* variables that are not config fields (the config file, test tooling)
+NON_CONFIG_ENV = frozenset(
+    {f"{ENV_PREFIX}CONFIG", f"{ENV_PREFIX}ARTIFACTS", f"{ENV_PREFIX}REQUIRE_BROWSER"}
+)
 DEFAULT_CONFIG_FILE = "inherit-sg.toml"
 
 
@@ -236,7 +240,7 @@ def load_config(
         except tomllib.TOMLDecodeError as exc:
             raise ConfigError(f"{p}: invalid TOML: {exc}") from None
     for name, raw in env.items():
-        if not name.startswith(ENV_PREFIX) or name == f"{ENV_PREFIX}CONFIG":
+        if not name.startswith(ENV_PREFIX) or name in NON_CONFIG_ENV:
             continue
         dotted = name[len(ENV_PREFIX) :].lower().replace("__", ".", 1)
         _set_path(data, dotted, _parse_scalar(raw), f"environment variable {name}")

@@ -1,0 +1,177 @@
+"""The web viewer in headless Chromium against a real uvicorn server: enter the API key,
+search, and check that the highlighted answer marker is the API's answer.
+
+Needs Debian's ``chromium`` and ``chromium-driver`` (``.ci/run`` installs them); skips only
+when they are missing. The screenshot goes to ``tests/artifacts/viewer.png`` or to the
+folder named by ``INHERIT_SG_ARTIFACTS``.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import threading
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import httpx
+import pytest
+import uvicorn
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+from selenium.webdriver.common.keys import Keys
+from selenium.webdriver.remote.webdriver import WebDriver
+from selenium.webdriver.support import expected_conditions as ec
+from selenium.webdriver.support.ui import WebDriverWait
+
+from api.app import create_app
+from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.config import Config, ServiceConfig
+from inherit_sg.facade import build_map
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+NAME = "viewer-house"
+KEY = "viewer-read-key"
+QUERY = "the sofa in the living room"
+MANY = "a window"
+WAIT_S = 60
+
+
+def _find(*names: str) -> str | None:
+    for name in names:
+        found = shutil.which(name)
+        if found:
+            return found
+    return None
+
+
+CHROMIUM = _find("chromium", "chromium-browser")
+DRIVER = _find("chromedriver")
+MISSING = (
+    "headless browser test needs Debian's chromium and chromium-driver "
+    "(apt-get install chromium chromium-driver)"
+)
+# CI sets INHERIT_SG_REQUIRE_BROWSER=1 so that a missing browser fails instead of skipping
+pytestmark = pytest.mark.skipif(
+    (CHROMIUM is None or DRIVER is None) and not os.environ.get("INHERIT_SG_REQUIRE_BROWSER"),
+    reason=MISSING,
+)
+
+
+def artifacts_dir() -> Path:
+    out = Path(os.environ.get("INHERIT_SG_ARTIFACTS") or REPO_ROOT / "tests" / "artifacts")
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@pytest.fixture(scope="module")
+def base_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    root = tmp_path_factory.mktemp("viewer")
+    write_dataset(generate_house(3, 1, 4), root / "house", width=128, height=96, workers=2)
+    build_map(root / "house", root / NAME)
+    config = Config(service=ServiceConfig(read_keys=[KEY]))
+    port = free_port()
+    server = uvicorn.Server(
+        uvicorn.Config(
+            create_app(root / NAME, config), host="127.0.0.1", port=port, log_level="warning"
+        )
+    )
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + WAIT_S
+    while not server.started:
+        assert thread.is_alive() and time.monotonic() < deadline, "server did not start"
+        time.sleep(0.05)
+    try:
+        yield f"http://127.0.0.1:{port}"
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[WebDriver]:
+    assert CHROMIUM is not None and DRIVER is not None, MISSING
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for arg in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--window-size=1500,950",
+    ):
+        options.add_argument(arg)
+    driver = webdriver.Chrome(service=Service(executable_path=DRIVER), options=options)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+
+
+def test_search_highlights_the_api_answer(browser: WebDriver, base_url: str) -> None:
+    expected = httpx.post(
+        f"{base_url}/v1/maps/{NAME}/query",
+        json={"text": QUERY},
+        headers={"Authorization": f"Bearer {KEY}"},
+        timeout=WAIT_S,
+    ).json()["answer"]
+    assert expected is not None and expected["label"] == "sofa"
+
+    wait = WebDriverWait(browser, WAIT_S)
+    browser.get(f"{base_url}/")
+    # without the key the /v1 calls answer 401 and the page says so
+    wait.until(ec.text_to_be_present_in_element((By.ID, "status"), "API key"))
+    browser.find_element(By.ID, "key-input").send_keys(KEY + Keys.TAB)
+    wait.until(ec.presence_of_element_located((By.CSS_SELECTOR, "#markers .marker")))
+    tabs = browser.find_elements(By.CSS_SELECTOR, "#floor-tabs button")
+    assert [t.get_attribute("data-floor") for t in tabs] == ["floor:0"]
+    assert browser.find_elements(By.CSS_SELECTOR, "#tree details[data-id='floor:0']")
+
+    box = browser.find_element(By.ID, "query-input")
+    box.send_keys(QUERY + Keys.ENTER)
+    marker = wait.until(ec.presence_of_element_located((By.CSS_SELECTOR, ".marker.answer")))
+    assert marker.get_attribute("data-id") == expected["id"]
+    assert len(browser.find_elements(By.CSS_SELECTOR, ".marker.answer")) == 1
+    assert browser.find_element(By.ID, "answer").get_attribute("data-id") == expected["id"]
+    assert browser.find_elements(By.CSS_SELECTOR, "#trace li")
+    # the answer's best view is shown, loaded through the keyed fetch
+    wait.until(
+        lambda d: d.execute_script(
+            "const f = document.getElementById('view-figure');"
+            "const i = document.getElementById('view-image');"
+            "return !f.hidden && i.complete && i.naturalWidth > 0;"
+        )
+    )
+    caption = browser.find_element(By.ID, "view-caption").text
+    assert "best view kf:" in caption
+
+    # a query with several candidates: the others are marked too, distinct from the answer
+    many = httpx.post(
+        f"{base_url}/v1/maps/{NAME}/query",
+        json={"text": MANY},
+        headers={"Authorization": f"Bearer {KEY}"},
+        timeout=WAIT_S,
+    ).json()
+    others = {c["id"] for c in many["candidates"]} - {many["answer"]["id"]}
+    assert others, "the second query should rank more than one candidate"
+    box.clear()
+    box.send_keys(MANY + Keys.ENTER)
+    wait.until(
+        lambda d: d.find_element(By.ID, "answer").get_attribute("data-id") == many["answer"]["id"]
+    )
+    answer = browser.find_element(By.CSS_SELECTOR, ".marker.answer")
+    assert answer.get_attribute("data-id") == many["answer"]["id"]
+    marked = browser.find_elements(By.CSS_SELECTOR, ".marker.candidate")
+    assert {m.get_attribute("data-id") for m in marked} == others
+    shot = artifacts_dir() / "viewer.png"
+    assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
