@@ -12,7 +12,7 @@ from typing import Annotated
 import typer
 
 from inherit_sg import __version__
-from inherit_sg.cli import demo_cmd, map_cmd, parse_cmd, query_cmd, serve_cmd, sim
+from inherit_sg.cli import bench_cmd, demo_cmd, map_cmd, parse_cmd, query_cmd, serve_cmd, sim
 from inherit_sg.cli.output import handle_errors, print_json, print_table
 
 app = typer.Typer(
@@ -29,6 +29,7 @@ app.command("parse")(parse_cmd.parse)
 app.command("demo")(demo_cmd.demo)
 app.command("query")(query_cmd.query)
 app.command("serve")(serve_cmd.serve)
+app.command("bench")(bench_cmd.bench)
 
 MapOption = Annotated[Path, typer.Option("--map", "-m", help="Map directory.")]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON.")]
