@@ -1,7 +1,8 @@
 """Dual-stream orchestration (paper §III-B/C): the geometric stream runs on every frame
 in the caller's thread; the semantic stream runs on a worker thread fed by the
 keyframe queue; hard (floor change) and soft (supervisor) triggers schedule a global
-update that refines rooms, rebuilds the hierarchy and persists the diff through the
+update (a remote supervisor decides on its own thread, so a slow model never stalls the
+geometric stream) that refines rooms, rebuilds the hierarchy and persists the diff through the
 single writer.
 
 Back-pressure: for recorded datasets (``block``) the producer waits while the queue is
@@ -33,6 +34,7 @@ from inherit_sg.mapping.adapters import (
     create_relation_verifier,
     create_supervisor,
 )
+from inherit_sg.mapping.decisions import DecisionRunner
 from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
 from inherit_sg.mapping.missing import MissingTracker
 from inherit_sg.mapping.object_map import ObjectMap
@@ -135,6 +137,9 @@ class Mapper:
         )
         self.builder.remember_embedded(self.graph)
         self.supervisor = supervisor or create_supervisor(config, self._bev_png)
+        self.decisions = DecisionRunner(
+            self.supervisor, lambda reason: self._request_update(f"soft: {reason}", "soft")
+        )
         self._seen_index: dict[str, dict[str, tuple[Box, float]]] | None = None
         self._lock = threading.RLock()  # geometric stream, working graph, object map
         self._update_reason: str | None = None
@@ -200,9 +205,7 @@ class Mapper:
                 )
             elif isinstance(event, RoomEntered):
                 inside = [o.id for o in self.objects_in(event.room_id)]
-                trigger, reason = self.supervisor.should_update(event.room_id, inside)
-                if trigger:
-                    self._request_update(f"soft: {reason}", "soft")
+                self.decisions.room_entered(event.room_id, inside)
         self.progress.keyframes = self.geometry.stats.keyframes
         self.progress.dropped = queue.dropped
         self._report()
@@ -315,6 +318,7 @@ class Mapper:
     # -------------------------------------------------------------------- finish
     def finish(self, seconds: float) -> BuildSummary:
         """Final update: missing objects, last flush, the session record."""
+        self.decisions.close()
         missing = self.missing.finish()
         for oid in missing:
             if oid in self.objects.objects:

@@ -32,7 +32,12 @@ MAX_REASON_CHARS = 200
 
 
 class VlmSupervisor:
-    """Soft trigger decided by a VLM on the BEV picture; heuristic on failure."""
+    """Soft trigger decided by a VLM on the BEV picture; heuristic on failure.
+
+    ``remote``: the mapper asks it off the frame thread (see :mod:`~inherit_sg.mapping.decisions`).
+    """
+
+    remote = True
 
     def __init__(
         self,
