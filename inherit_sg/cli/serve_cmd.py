@@ -49,11 +49,11 @@ def serve(
     ],
     host: Annotated[
         str | None,
-        typer.Option(help="Interface to bind [default: service.host, 127.0.0.1]."),
+        typer.Option(help="Interface to bind (default: service.host, 127.0.0.1)."),
     ] = None,
     port: Annotated[
         int | None,
-        typer.Option(min=1, max=65535, help="TCP port [default: service.port, 8765]."),
+        typer.Option(min=1, max=65535, help="TCP port (default: service.port, 8765)."),
     ] = None,
     config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
     overrides: Annotated[
@@ -61,7 +61,7 @@ def serve(
         typer.Option("--set", help="Config override section.field=value (repeatable)."),
     ] = None,
 ) -> None:
-    """Serve maps read-only at http://HOST:PORT/v1/maps/{name} (name = directory name)."""
+    """Serve maps at http://HOST:PORT/v1/maps/{name} (name = directory name)."""
     import uvicorn
 
     from api.app import create_app
