@@ -2,10 +2,13 @@
 
 Every :class:`~inherit_sg.errors.InheritSGError` carries its own ``http_status`` and
 ``to_dict()`` body; request validation errors (400) and routing errors (404, 405) answer
-in the same ``{"error", "message"}`` JSON shape.
+in the same ``{"error", "message"}`` JSON shape, and so does any unexpected error (500,
+logged with its traceback).
 """
 
 from __future__ import annotations
+
+import logging
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -13,6 +16,8 @@ from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException
 
 from inherit_sg.errors import BackPressureError, InheritSGError
+
+log = logging.getLogger(__name__)
 
 
 def error_response(exc: InheritSGError) -> JSONResponse:
@@ -45,8 +50,19 @@ async def _http_error(request: Request, exc: Exception) -> JSONResponse:
     return JSONResponse(body, status_code=exc.status_code, headers=exc.headers)
 
 
+async def _unexpected_error(request: Request, exc: Exception) -> JSONResponse:
+    # a bug, not bad input: log it with its traceback, answer in the usual shape
+    log.error("%s %s failed", request.method, request.url.path, exc_info=exc)
+    body = {
+        "error": "internal_error",
+        "message": f"{request.method} {request.url.path}: {type(exc).__name__} (see server log)",
+    }
+    return JSONResponse(body, status_code=500)
+
+
 def install_error_handlers(app: FastAPI) -> None:
     """Register the handlers that turn errors into JSON bodies on ``app``."""
     app.add_exception_handler(InheritSGError, _library_error)
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(HTTPException, _http_error)
+    app.add_exception_handler(Exception, _unexpected_error)

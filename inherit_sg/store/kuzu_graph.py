@@ -151,6 +151,8 @@ class KuzuGraph:
             return out
         except RuntimeError as exc:
             raise translate(exc, query) from None
+        except (ValueError, TypeError) as exc:  # parameters Kuzu cannot bind
+            raise CypherError(f"query parameters: {exc}") from None
 
     def close(self) -> None:
         """Close every connection, then the database (checkpointing the WAL)."""

@@ -179,3 +179,19 @@ def test_serve_command_help() -> None:
     assert "--map" in out and "--host" in out and "8765" in out
     missing = CliRunner().invoke(app, ["--map", "/nonexistent/map"])
     assert missing.exit_code == 2 and "not found" in missing.output
+
+
+def test_unexpected_error_answers_json_500(map_dir: Path) -> None:
+    app = create_app(map_dir)
+
+    @app.get("/boom")
+    def boom() -> None:
+        raise RuntimeError("a bug")
+
+    with TestClient(app, raise_server_exceptions=False) as c:
+        resp = c.get("/boom")
+    assert resp.status_code == 500
+    assert resp.json() == {
+        "error": "internal_error",
+        "message": "GET /boom: RuntimeError (see server log)",
+    }
