@@ -34,6 +34,7 @@ from inherit_sg.errors import (
     MapError,
 )
 from inherit_sg.model import Frame, Intrinsics, Pose, Session
+from inherit_sg.perception.base import blind_without_instances
 from inherit_sg.store import MapStore
 
 log = logging.getLogger(__name__)
@@ -95,6 +96,7 @@ class LiveSession:
         self.error: str | None = None
         self.summary: dict[str, Any] | None = None
         self._received = 0
+        self._blind = 0  # frames the configured segmenter cannot look at
         self._frame_s = 0.0
         self._frames: queue.Queue[Frame] = queue.Queue(maxsize=frame_queue)
         self._lock = threading.Lock()  # state, intake counters and the frame queue
@@ -159,6 +161,8 @@ class LiveSession:
             if self.intrinsics is None:
                 self.intrinsics = intr
             self._received += 1
+            if instances is None and blind_without_instances(self.mapper.semantic.segmenter):
+                self._blind += 1
             return FrameReceipt(index, *self._counters(), self._frames.qsize())
 
     def _intrinsics_for(self, given: Intrinsics | None) -> Intrinsics:
@@ -245,8 +249,18 @@ class LiveSession:
                 "objects": objects,
                 "updates": progress.updates,
                 "error": self.error,
+                "warnings": self._warnings(),
                 "summary": self.summary,
             }
+
+    def _warnings(self) -> list[str]:
+        if not self._blind:
+            return []
+        return [
+            f"{self._blind} frames came without instance masks, which the 'dataset' segmenter "
+            "needs: they add geometry but no objects (send instances + instance_labels, or "
+            "configure perception.segmenter = 'sam3' or 'classical')"
+        ]
 
     # ------------------------------------------------------------------ finish
     def finish(self) -> dict[str, Any]:

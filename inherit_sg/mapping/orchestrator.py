@@ -43,6 +43,7 @@ from inherit_sg.mapping.semantic import LabelSimilarity, SemanticStream
 from inherit_sg.mapping.supervisor import Supervisor
 from inherit_sg.mapping.update import HierarchyBuilder
 from inherit_sg.model import Edge, EdgeKind, Frame, Keyframe, ObjectNode, ObjectStatus, Session
+from inherit_sg.perception.base import blind_without_instances
 from inherit_sg.store import MapStore
 
 log = logging.getLogger(__name__)
@@ -257,7 +258,8 @@ class Mapper:
                     )
                 )
             self.missing.observed(node_id for node_id, _ in assigned)
-            self.missing.check_frame(frame)
+            if not (blind_without_instances(self.semantic.segmenter) and frame.instances is None):
+                self.missing.check_frame(frame)
             kf.jpeg = encode_keyframe(
                 frame.rgb, self.config.store.keyframe_max_side, self.config.store.jpeg_quality
             )

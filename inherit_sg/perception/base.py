@@ -172,3 +172,9 @@ def l2_normalise(x: np.ndarray, eps: float = 1e-12) -> np.ndarray:
     x = np.asarray(x, dtype=np.float32)
     norm = np.linalg.norm(x, axis=-1, keepdims=True)
     return (x / np.maximum(norm, eps)).astype(np.float32)
+
+
+def blind_without_instances(segmenter: object) -> bool:
+    """Whether ``segmenter`` sees nothing in frames that carry no instance images (the
+    dataset segmenter: such frames are no evidence that a place is empty)."""
+    return bool(getattr(segmenter, "needs_instances", False))

@@ -40,7 +40,13 @@ def _match(label: str, prompts: Sequence[str]) -> bool:
 
 
 class DatasetSegmenter:
-    """Masks and labels from ``frame.instances`` / ``frame.instance_labels``."""
+    """Masks and labels from ``frame.instances`` / ``frame.instance_labels``.
+
+    ``needs_instances``: a frame without instance images is not looked at (finding nothing
+    there is no evidence that nothing is there).
+    """
+
+    needs_instances = True
 
     def __init__(
         self,

@@ -229,3 +229,36 @@ def test_queries_see_objects_while_the_session_maps(
     walk = next(s for s in stats["sessions"] if s["name"] == "walk")
     assert walk["frames"] == n and walk["finished"] is not None
     assert len(seen()) >= 1 and stats["nodes"]["Object"] >= summary["objects"]
+
+
+def post_frames(client: TestClient, dataset: Path, sid: str, count: int, masks: bool) -> None:
+    """Post the first ``count`` frames of the walk, retrying on 429."""
+    for i in range(count):
+        files, data = frame_parts(dataset, i, intrinsics=i == 0)
+        if not masks:
+            files.pop("instances")
+            data.pop("instance_labels")
+        while (resp := post(client, sid, files, data)).status_code == 429:
+            time.sleep(0.05)
+        assert resp.status_code == 202, resp.text
+
+
+def test_frames_without_masks_warn_and_mark_nothing_missing(
+    client: TestClient, dataset: Path
+) -> None:
+    if client.get(f"{BASE}/objects").json()["total"] == 0:  # run alone: map objects first
+        sid = start(client, name="with masks")
+        post_frames(client, dataset, sid, 12, masks=True)
+        client.post(f"{BASE}/sessions/{sid}/finish")
+    assert client.get(f"{BASE}/objects").json()["total"] > 0
+    sid = start(client, name="no masks")
+    post_frames(client, dataset, sid, 12, masks=False)
+    status = client.get(f"{BASE}/sessions/{sid}").json()
+    assert "12 frames came without instance masks" in status["warnings"][0]
+    summary = client.post(f"{BASE}/sessions/{sid}/finish").json()
+    assert summary["missing"] == 0
+    missing = client.post(
+        f"{BASE}/cypher",
+        json={"query": "MATCH (o:Object) WHERE o.status = 'missing' RETURN count(o)"},
+    ).json()["rows"]
+    assert missing == [[0]]
