@@ -20,6 +20,7 @@ from ingest.synthetic.truth_spec import (
     RoomConstraint,
 )
 from ingest.synthetic.vocabulary import OBJECT_KINDS, ROOM_SYNONYMS
+from inherit_sg.wording import article
 
 NegatablePart = (
     RoomConstraint | AreaConstraint | FloorConstraint | AttributeConstraint | RelationConstraint
@@ -85,14 +86,6 @@ def plural(noun: str) -> str:
     else:
         word = last + "s"
     return f"{head} {word}" if head else word
-
-
-def article(phrase: str) -> str:
-    """``a`` or ``an`` for ``phrase``."""
-    first = phrase.lower()
-    if first.startswith(("use", "uni", "uti")):
-        return "a"
-    return "an" if first[:1] in tuple("aeiou") else "a"
 
 
 def display(text: str) -> str:

@@ -18,6 +18,7 @@ from scipy.sparse.csgraph import connected_components
 
 from inherit_sg.mapping.knowledge import AREA_RULES
 from inherit_sg.model import ObjectNode
+from inherit_sg.wording import with_article
 
 CLUSTER_GAP = 0.8
 
@@ -68,4 +69,4 @@ def summarise_area(label: str, labels: Sequence[str]) -> str:
     if not parts:
         return f"An empty {label}."
     listing = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
-    return f"A {label} with {listing}."
+    return f"{with_article(label, capital=True)} with {listing}."

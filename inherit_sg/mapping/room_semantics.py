@@ -7,6 +7,7 @@ from collections import Counter
 from collections.abc import Sequence
 
 from inherit_sg.mapping.knowledge import ORDINALS, ROOM_EVIDENCE
+from inherit_sg.wording import with_article
 
 MIN_EVIDENCE = 2.0
 
@@ -44,7 +45,7 @@ def summarise_room(
     room_label: str, level: int | None, area_summaries: Sequence[str], object_labels: Sequence[str]
 ) -> str:
     """Room summary: type, floor, its areas and its most common objects."""
-    head = f"A {room_label} on {floor_phrase(level)}"
+    head = f"{with_article(room_label, capital=True)} on {floor_phrase(level)}"
     counts = Counter(lab for lab in object_labels if lab not in ("door", "window"))
     if not counts and not area_summaries:
         return head + ", with nothing mapped in it yet."
