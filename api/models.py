@@ -32,6 +32,12 @@ class CypherRequest(BaseModel):
     query: str = Field(min_length=1, description="A read-only Cypher statement.")
     params: dict[str, Any] = Field(default_factory=dict, description="Query parameters.")
     max_rows: int = Field(1000, ge=1, le=MAX_CYPHER_ROWS, description="Stop after this many rows.")
+    timeout_s: float | None = Field(
+        None,
+        gt=0,
+        le=300,
+        description="Time limit in seconds (default: service.cypher_timeout_s); 408 past it.",
+    )
 
 
 class CypherResponse(BaseModel):

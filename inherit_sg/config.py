@@ -111,6 +111,9 @@ class ServiceConfig(_Section):
     write_keys: list[str] = Field(default_factory=list)
     cors_origins: list[str] = Field(default_factory=list)
     max_body_mb: float = Field(32.0, gt=0)
+    cypher_timeout_s: float = Field(
+        10.0, gt=0, le=3600, description="default time limit of a Cypher request"
+    )
 
 
 class GeometryConfig(_Section):

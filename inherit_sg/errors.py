@@ -68,6 +68,13 @@ class CypherError(InputError):
     code = "cypher_error"
 
 
+class QueryTimeoutError(CypherError):
+    """A Cypher statement ran past its time limit and was interrupted."""
+
+    http_status = 408
+    code = "query_timeout"
+
+
 class NotFoundError(InheritSGError):
     """Something named by the user does not exist."""
 

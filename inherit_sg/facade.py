@@ -85,10 +85,17 @@ class MapService:
         }
 
     def cypher(
-        self, query: str, params: dict[str, Any] | None = None, *, max_rows: int | None = 1000
+        self,
+        query: str,
+        params: dict[str, Any] | None = None,
+        *,
+        max_rows: int | None = 1000,
+        timeout_s: float | None = None,
     ) -> CypherResult:
-        """Run a read-only Cypher query."""
-        return self.store.cypher(query, params, read_only=True, max_rows=max_rows)
+        """Run a read-only Cypher query (interrupted after ``timeout_s``, if given)."""
+        return self.store.cypher(
+            query, params, read_only=True, max_rows=max_rows, timeout_s=timeout_s
+        )
 
     def query(
         self,

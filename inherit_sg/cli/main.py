@@ -85,13 +85,18 @@ def cypher(
         typer.Option("--param", "-p", help="Query parameter NAME=JSON (repeatable)."),
     ] = None,
     max_rows: Annotated[int, typer.Option(help="Stop after this many rows.")] = 1000,
+    timeout: Annotated[
+        float | None, typer.Option(min=0.001, help="Interrupt the query after SECONDS.")
+    ] = None,
     as_json: JsonOption = False,
 ) -> None:
     """Run a read-only Cypher query; write clauses and procedures are refused."""
     from inherit_sg.facade import MapService, parse_params
 
     with MapService.open(map_dir) as service:
-        result = service.cypher(query, parse_params(param or []), max_rows=max_rows)
+        result = service.cypher(
+            query, parse_params(param or []), max_rows=max_rows, timeout_s=timeout
+        )
     if as_json:
         print_json({"columns": result.columns, "rows": result.rows, "truncated": result.truncated})
         return

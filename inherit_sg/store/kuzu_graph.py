@@ -15,7 +15,7 @@ from typing import Any
 
 import kuzu
 
-from inherit_sg.errors import CypherError, MapError
+from inherit_sg.errors import CypherError, MapError, QueryTimeoutError
 from inherit_sg.store.cypher_lex import split_statements
 from inherit_sg.store.kuzu_util import next_row, run, translate
 from inherit_sg.store.readonly import check_read_only
@@ -120,9 +120,11 @@ class KuzuGraph:
         *,
         read_only: bool = True,
         max_rows: int | None = None,
+        timeout_s: float | None = None,
     ) -> CypherResult:
         """Run one user statement. Read-only statements pass the lexical guard and run
-        in a ``READ ONLY`` transaction on a reader connection; others need the writer."""
+        in a ``READ ONLY`` transaction on a reader connection; others need the writer.
+        ``timeout_s``: interrupt the statement after that long (QueryTimeoutError)."""
         statements = split_statements(query)
         if len(statements) != 1:
             raise CypherError(f"expected one Cypher statement, got {len(statements)}")
@@ -130,14 +132,20 @@ class KuzuGraph:
         if read_only:
             check_read_only(query)
             with self.snapshot() as conn:
-                return self._fetch(conn, query, params, max_rows)
+                return self._fetch(conn, query, params, max_rows, timeout_s)
         with self.writer() as conn:
-            return self._fetch(conn, query, params, max_rows)
+            return self._fetch(conn, query, params, max_rows, timeout_s)
 
     @staticmethod
     def _fetch(
-        conn: kuzu.Connection, query: str, params: dict[str, Any] | None, max_rows: int | None
+        conn: kuzu.Connection,
+        query: str,
+        params: dict[str, Any] | None,
+        max_rows: int | None,
+        timeout_s: float | None = None,
     ) -> CypherResult:
+        if timeout_s is not None:
+            conn.set_query_timeout(max(1, round(timeout_s * 1000)))
         try:
             res = conn.execute(query, params or {})
             assert isinstance(res, kuzu.QueryResult)
@@ -150,9 +158,16 @@ class KuzuGraph:
             res.close()
             return out
         except RuntimeError as exc:
+            if timeout_s is not None and str(exc).strip() == "Interrupted.":
+                raise QueryTimeoutError(
+                    f"query interrupted after its time limit of {timeout_s:g} s"
+                ) from None
             raise translate(exc, query) from None
         except (ValueError, TypeError) as exc:  # parameters Kuzu cannot bind
             raise CypherError(f"query parameters: {exc}") from None
+        finally:
+            if timeout_s is not None:
+                conn.set_query_timeout(0)  # the connection is reused: no limit by default
 
     def close(self) -> None:
         """Close every connection, then the database (checkpointing the WAL)."""

@@ -384,13 +384,17 @@ class MapStore:
         *,
         read_only: bool = True,
         max_rows: int | None = None,
+        timeout_s: float | None = None,
     ) -> CypherResult:
-        """Run one Cypher statement against the graph (the public tables). Read-only by
+        """Run one Cypher statement against the graph (the public tables), interrupted
+        after ``timeout_s`` if given (QueryTimeoutError). Read-only by
         default (ReadOnlyViolationError for writes); ``read_only=False`` needs a
         writable store (the search index is re-synced after it) and may not create
         indexes in the graph database (see :mod:`~inherit_sg.store.search_index`)."""
         if read_only:
-            return self._g().query(query, params, read_only=True, max_rows=max_rows)
+            return self._g().query(
+                query, params, read_only=True, max_rows=max_rows, timeout_s=timeout_s
+            )
         if not self.writable:
             raise MapError(f"map {self.path} is open read-only; open it with write=True")
         if any(w in query.upper() for w in ("CREATE_VECTOR_INDEX", "CREATE_FTS_INDEX")):
@@ -400,7 +404,9 @@ class MapStore:
                 "indexes live in index.kuzu"
             )
         try:
-            return self._g().query(query, params, read_only=False, max_rows=max_rows)
+            return self._g().query(
+                query, params, read_only=False, max_rows=max_rows, timeout_s=timeout_s
+            )
         finally:  # whatever it changed: re-check every derived structure
             self._search.invalidate()
             with self._g().transaction() as conn:

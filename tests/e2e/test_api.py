@@ -195,3 +195,16 @@ def test_unexpected_error_answers_json_500(map_dir: Path) -> None:
         "error": "internal_error",
         "message": "GET /boom: RuntimeError (see server log)",
     }
+
+
+SLOW_CYPHER = (
+    "UNWIND range(1, 3000) AS a UNWIND range(1, 3000) AS b UNWIND range(1, 3000) AS x "
+    "WITH a, b, x WHERE (a * b + x) % 7 = 3 RETURN count(*)"
+)
+
+
+def test_cypher_time_limit_answers_408_and_the_map_keeps_working(client: TestClient) -> None:
+    resp = client.post(f"/v1/maps/{NAME}/cypher", json={"query": SLOW_CYPHER, "timeout_s": 0.2})
+    assert resp.status_code == 408
+    assert resp.json()["error"] == "query_timeout" and "0.2 s" in resp.json()["message"]
+    assert cypher(client, "MATCH (f:Floor) RETURN count(f)")["rows"] == [[1]]

@@ -128,3 +128,14 @@ def test_second_writer_gets_a_clear_lock_error(apartment: Path) -> None:
 def test_every_command_has_help(args: list[str]) -> None:
     proc = run(*args)
     assert "Usage" in proc.stdout and "--help" in proc.stdout
+
+
+def test_cypher_timeout_option(tmp_path: Path) -> None:
+    MapStore.create(tmp_path / "m").close()
+    slow = (
+        "UNWIND range(1, 3000) AS a UNWIND range(1, 3000) AS b UNWIND range(1, 3000) AS x "
+        "WITH a, b, x WHERE (a * b + x) % 7 = 3 RETURN count(*)"
+    )
+    proc = run("cypher", "--map", str(tmp_path / "m"), slow, "--timeout", "0.2", check=False)
+    assert proc.returncode != 0
+    assert "time limit of 0.2 s" in proc.stderr + proc.stdout
