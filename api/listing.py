@@ -26,7 +26,7 @@ def _label(value: str | None) -> str | None:
     return value.lower() if value is not None else None
 
 
-def _page(
+def page_of(
     service: MapService,
     table: str,
     var: str,
@@ -69,7 +69,7 @@ def room_floors(service: MapService) -> dict[str, str | None]:
 
 def list_floors(service: MapService, *, label: str | None, limit: int, offset: int) -> FloorPage:
     """A page of floors ordered by id, optionally filtered by label."""
-    total, rows = _page(
+    total, rows = page_of(
         service,
         "Floor",
         "f",
@@ -98,7 +98,7 @@ def list_rooms(
     service: MapService, *, floor: str | None, label: str | None, limit: int, offset: int
 ) -> RoomPage:
     """A page of rooms ordered by id, filtered by floor id and label."""
-    total, rows = _page(
+    total, rows = page_of(
         service,
         "Room",
         "r",
@@ -139,7 +139,7 @@ def list_areas(
     room id and label."""
     floors = room_floors(service)
     on_floor = None if floor is None else [r for r, f in floors.items() if f == floor]
-    total, rows = _page(
+    total, rows = page_of(
         service,
         "Area",
         "a",

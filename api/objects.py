@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from api.listing import page_of
 from api.models import HierarchyStep, ObjectDetail, ObjectPage, ObjectSummary, RelationEdge
 from inherit_sg.errors import NodeNotFoundError
 from inherit_sg.facade import MapService
@@ -26,25 +27,13 @@ def list_objects(
     offset: int,
 ) -> ObjectPage:
     """A page of objects ordered by id, filtered by floor id, room id and label."""
-    where, params = [], {}
-    for name, column, value in (
+    filters = [
         ("floor", "o.floor_id", floor),
         ("room", "o.room_id", room),
         ("label", "lower(o.label)", label.lower() if label is not None else None),
-    ):
-        if value is not None:
-            where.append(f"{column} = ${name}")
-            params[name] = value
-    clause = f" WHERE {' AND '.join(where)}" if where else ""
-    total = service.cypher(f"MATCH (o:Object){clause} RETURN count(o)", params).rows[0][0]
-    if offset >= total:  # past the end: nothing to fetch (and no large SKIP for Kuzu)
-        return ObjectPage(objects=[], total=int(total), limit=limit, offset=offset)
-    page = service.cypher(
-        f"MATCH (o:Object){clause} RETURN {_FIELDS} ORDER BY o.id SKIP $offset LIMIT $limit",
-        {**params, "offset": offset, "limit": limit},
-        max_rows=None,
-    )
-    objects = [ObjectSummary(**_summary(row)) for row in page.rows]
+    ]
+    total, rows = page_of(service, "Object", "o", _FIELDS, filters, limit, offset)
+    objects = [ObjectSummary(**_summary(row)) for row in rows]
     return ObjectPage(objects=objects, total=int(total), limit=limit, offset=offset)
 
 
