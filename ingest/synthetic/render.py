@@ -5,7 +5,9 @@ along the camera axis (0 where nothing is hit within ``max_range``), the instanc
 is the hit face's instance id. Colour is Lambertian shading of the face albedo under a
 point light at the ceiling of the room the hit point is in, a weak sky light and an
 ambient term, with a small procedural texture so flat-coloured objects vary across
-their surface; optional shadow rays darken what the room light cannot see.
+their surface, and a material look per object part (grain, weave, speckle, specular
+sheen: :mod:`ingest.synthetic.render_materials`); optional shadow rays darken what the
+room light cannot see.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from embreex.mesh_construction import TriangleMesh
 
 from ingest.synthetic.grid import Grid
 from ingest.synthetic.plan import HousePlan
+from ingest.synthetic.render_materials import pattern, specular
 from ingest.synthetic.world import WorldMesh
 from inherit_sg.model import Intrinsics, Pose
 
@@ -199,10 +202,19 @@ class Renderer:
             _, tfar = self._cast(points[lit] + normals[lit] * np.float32(2e-3), to_light[lit])
             lamp[lit[tfar < light_dist[lit] - 0.05]] *= np.float32(0.15)
         sky = _rotate(normals, self._sky_dir[None, :])[:, 0]
+        surface = _texture(points, faces, self.world.texture)
+        codes = self.world.material
+        if codes is not None:
+            mats = codes[faces]
+            surface = pattern(mats, points, surface)
+            shine = lamp * specular(mats, normals, dirs, to_light)
         light = (
             lamp + np.float32(SKY_LIGHT) * np.maximum(sky, 0.0) + np.float32(AMBIENT)
-        ) * _texture(points, faces, self.world.texture)
-        return self.world.albedo[faces] * light[:, None]
+        ) * surface
+        out = self.world.albedo[faces] * light[:, None]
+        if codes is not None:
+            out += shine[:, None]
+        return out
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

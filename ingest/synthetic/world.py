@@ -17,6 +17,7 @@ from ingest.synthetic.geom import Rect, rect_minus
 from ingest.synthetic.paint import Painter
 from ingest.synthetic.placement import Placed
 from ingest.synthetic.plan import SLAB_T, WALL_T, FloorPlan, HousePlan, WallLine
+from ingest.synthetic.render_materials import material_code
 from ingest.synthetic.shapes import Part, parts_for
 from ingest.synthetic.vocabulary import COLOURS
 
@@ -51,6 +52,7 @@ class WorldMesh:
     instance: np.ndarray  # (F,) uint16, 0 = background
     albedo: np.ndarray  # (F, 3) float32 linear
     texture: np.ndarray  # (F,) float32 amplitude of the procedural texture
+    material: np.ndarray | None = None  # (F,) uint8 material codes (render_materials)
 
     def to_trimesh(self) -> trimesh.Trimesh:
         """A trimesh with face colours (for inspection and export)."""
@@ -65,10 +67,17 @@ class _Builder:
         self.inst: list[np.ndarray] = []
         self.rgb: list[np.ndarray] = []
         self.tex: list[np.ndarray] = []
+        self.mat: list[np.ndarray] = []
         self.n = 0
 
     def add(
-        self, verts: np.ndarray, faces: np.ndarray, inst: int, rgb: np.ndarray, tex: float
+        self,
+        verts: np.ndarray,
+        faces: np.ndarray,
+        inst: int,
+        rgb: np.ndarray,
+        tex: float,
+        material: int = 0,
     ) -> None:
         self.v.append(verts)
         self.f.append(faces + self.n)
@@ -76,6 +85,7 @@ class _Builder:
         self.inst.append(np.full(len(faces), inst, dtype=np.uint16))
         self.rgb.append(np.broadcast_to(np.asarray(rgb, float), (len(faces), 3)))
         self.tex.append(np.full(len(faces), tex, dtype=np.float32))
+        self.mat.append(np.full(len(faces), material, dtype=np.uint8))
 
     def box(
         self, lo: np.ndarray, hi: np.ndarray, inst: int, side_rgb: np.ndarray, tex: float
@@ -90,6 +100,7 @@ class _Builder:
             instance=np.concatenate(self.inst),
             albedo=srgb_to_linear(np.concatenate(self.rgb)).astype(np.float32),
             texture=np.concatenate(self.tex),
+            material=np.concatenate(self.mat),
         )
 
 
@@ -109,7 +120,9 @@ def _add_part(b: _Builder, obj: Placed, part: Part) -> None:
         verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
     local = verts * np.asarray(part.size) + np.asarray(part.center)
     world = _rotate(local, obj.quarter) + np.array([obj.x, obj.y, obj.z])
-    b.add(world, faces, obj.instance_id, rgb, 0.06)
+    # parts in their own colour (a lampshade, a screen) are not of the object's material
+    code = material_code(obj.material) if part.rgb is None else 0
+    b.add(world, faces, obj.instance_id, rgb, 0.06, code)
 
 
 def _paint_box(b: _Builder, paint: Painter, lo: np.ndarray, hi: np.ndarray) -> None:

@@ -72,7 +72,9 @@ class SemanticStream:
     describer: Describer
     objects: ObjectMap
     colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
-    min_pixels: int = 150
+    material_votes: dict[str, Counter[str]] = field(default_factory=dict)
+    # small things (books, bottles, laptops) cover only ~60–150 px in a 320×240 view
+    min_pixels: int = 60
 
     def observe_keyframe(self, frame: Frame) -> tuple[list[Observation], list[Detection]]:
         """Detections of ``frame`` turned into 3D observations with visual features."""
@@ -117,6 +119,7 @@ class SemanticStream:
                 node_id = next(created)
                 self._describe(node_id, frame, det, obs)
             self._vote_colour(node_id, frame, det)
+            self._vote_material(node_id, frame, det)
             assigned.append((node_id, det))
         return assigned, stats
 
@@ -126,9 +129,26 @@ class SemanticStream:
         self.objects.objects[node_id].node.description = self.describer.describe(crop)
 
     def _vote_colour(self, node_id: str, frame: Frame, det: Detection) -> None:
-        from inherit_sg.perception.colour_names import colour_name
+        from inherit_sg.perception.colour_names import colour_name_in_frame
 
         votes = self.colour_votes.setdefault(node_id, Counter())
-        votes[colour_name(frame.rgb, det.mask)] += 1
+        votes[colour_name_in_frame(frame.rgb, det.mask)] += 1
         node = self.objects.objects[node_id].node
         node.attributes["colour"] = votes.most_common(1)[0][0]
+
+    def _vote_material(self, node_id: str, frame: Frame, det: Detection) -> None:
+        """Material from the texture of each view; views that cannot tell do not vote,
+        and the attribute is kept only while one material has most of the votes."""
+        from inherit_sg.perception.material import material_name
+
+        votes = self.material_votes.setdefault(node_id, Counter())
+        seen = material_name(frame.rgb, det.mask)
+        if seen != "unknown":
+            votes[seen] += 1
+        node = self.objects.objects[node_id].node
+        if votes:
+            best, n = votes.most_common(1)[0]
+            if 2 * n > sum(votes.values()):
+                node.attributes["material"] = best
+                return
+        node.attributes.pop("material", None)

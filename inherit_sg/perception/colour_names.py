@@ -94,7 +94,7 @@ _PROTO_LAB, _PROTO_NAMES = _prototype_table()
 
 
 def representative_colour(
-    rgb: np.ndarray, mask: np.ndarray | None = None, max_pixels: int = 4096
+    rgb: np.ndarray, mask: np.ndarray | None = None, max_pixels: int = 4096, gain: float = 1.0
 ) -> np.ndarray | None:
     """Shading-robust representative sRGB colour (3 floats in [0, 255]) of the masked
     pixels of an (H, W, 3) uint8 image (all pixels when ``mask`` is None); None when
@@ -122,7 +122,7 @@ def representative_colour(
     sums = lin[bright].sum(axis=1, keepdims=True)
     chroma = np.median(lin[bright] / np.maximum(sums, 1e-6), axis=0)
     chroma = chroma / max(float(chroma.sum()), 1e-6)
-    rep = chroma * (lit / max(float(chroma @ _LUMA), 1e-6))
+    rep = chroma * (gain * lit / max(float(chroma @ _LUMA), 1e-6))
     return np.asarray(linear_to_srgb(rep), dtype=np.float64)
 
 
@@ -147,4 +147,31 @@ def rank_colours(colour: np.ndarray | tuple[float, float, float]) -> list[tuple[
 def colour_name(rgb: np.ndarray, mask: np.ndarray | None = None) -> str:
     """Name of the dominant colour of the masked pixels ("unknown" for an empty mask)."""
     rep = representative_colour(rgb, mask)
+    return "unknown" if rep is None else name_rgb(rep)
+
+
+# The luminance the frame's brightest surfaces are scaled to (above 1: those surfaces
+# usually face the light less squarely than the object's lit side), and the most a dim
+# frame is brightened; calibrated on rendered views of training houses.
+WHITE_LUMA = 1.3
+MAX_GAIN = 4.0
+
+
+def exposure_gain(rgb: np.ndarray, mask: np.ndarray, max_pixels: int = 8192) -> float:
+    """How much to brighten an object seen in ``rgb`` so that the frame's brightest
+    surfaces (95th percentile outside ``mask``: walls, ceiling) read as white: a white
+    object in a dim room then stays white instead of turning grey."""
+    px = rgb[~np.asarray(mask, dtype=bool)]
+    if px.shape[0] == 0:
+        return 1.0
+    if px.shape[0] > max_pixels:
+        px = px[:: -(-px.shape[0] // max_pixels)]
+    ref = float(np.percentile(srgb_to_linear(px) @ _LUMA, 95))
+    return float(np.clip(WHITE_LUMA / max(ref, 1e-6), 1.0, MAX_GAIN))
+
+
+def colour_name_in_frame(rgb: np.ndarray, mask: np.ndarray) -> str:
+    """Name of an object's colour in a whole frame, exposure-corrected by the frame's
+    bright surfaces (:func:`exposure_gain`); "unknown" for an empty mask."""
+    rep = representative_colour(rgb, mask, gain=exposure_gain(rgb, mask))
     return "unknown" if rep is None else name_rgb(rep)

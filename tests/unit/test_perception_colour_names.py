@@ -10,6 +10,8 @@ import pytest
 from inherit_sg.perception.colour_names import (
     COLOUR_NAMES,
     colour_name,
+    colour_name_in_frame,
+    exposure_gain,
     linear_to_lab,
     linear_to_srgb,
     name_rgb,
@@ -100,3 +102,22 @@ def test_rank_colours_covers_palette_best_first() -> None:
     assert all(a[1] <= b[1] for a, b in itertools.pairwise(ranked))
     assert name_rgb((30, 45, 115)) == "blue"  # navy
     assert name_rgb((250, 180, 200)) == "pink"
+
+
+def test_exposure_correction_keeps_white_white_in_a_dim_frame() -> None:
+    frame = np.zeros((40, 60, 3), dtype=np.uint8)
+    dim = 0.3  # the room light reaches this share of full brightness
+    wall = srgb_to_linear(np.array([232, 226, 212])) * dim
+    frame[:] = np.round(linear_to_srgb(wall)).astype(np.uint8)
+    mask = np.zeros((40, 60), dtype=bool)
+    mask[10:30, 20:40] = True
+    white = srgb_to_linear(np.array([240, 240, 236])) * dim * 0.8
+    frame[mask] = np.round(linear_to_srgb(white)).astype(np.uint8)
+    assert colour_name(frame, mask) == "grey"  # the pixels alone look grey
+    assert exposure_gain(frame, mask) > 1.5
+    assert colour_name_in_frame(frame, mask) == "white"
+    grey = srgb_to_linear(np.array([110, 110, 110])) * dim * 0.8
+    frame[mask] = np.round(linear_to_srgb(grey)).astype(np.uint8)
+    assert colour_name_in_frame(frame, mask) in ("grey", "black")
+    # a frame without other pixels gives no exposure reference
+    assert exposure_gain(frame, np.ones((40, 60), dtype=bool)) == 1.0

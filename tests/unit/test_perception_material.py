@@ -1,0 +1,101 @@
+"""Material from texture: statistics and names on synthetic patches, and the renderer's
+material looks they are meant to read."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ingest.synthetic.render_materials import (
+    MATERIAL_CODE,
+    material_code,
+    pattern,
+    specular,
+    value_noise,
+)
+from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
+from inherit_sg.perception.material import classify, material_name, texture_stats
+
+H, W = 48, 64
+
+
+def _patch(multiplier: np.ndarray, albedo: tuple[int, int, int] = (150, 100, 60)) -> np.ndarray:
+    """An sRGB patch of ``albedo`` lit from the left (a smooth gradient), with a step in
+    lighting between two faces and the light multiplied by ``multiplier``."""
+    shade = np.linspace(0.35, 0.9, W)[None, :] * np.ones((H, 1))
+    shade[:, W // 2 :] *= 0.6  # a second face, less lit
+    lin = srgb_to_linear(np.asarray(albedo)) * (shade * multiplier)[..., None]
+    return np.round(linear_to_srgb(lin)).astype(np.uint8)
+
+
+def _plane_points() -> np.ndarray:
+    """World points of a vertical 0.64 × 0.48 m face at 1 cm per pixel."""
+    ys, xs = np.mgrid[0:H, 0:W]
+    return np.stack([xs * 0.01, np.full(xs.shape, 2.0), 1.0 - ys * 0.01], axis=-1).reshape(-1, 3)
+
+
+def _rendered(material: str) -> np.ndarray:
+    codes = np.full(H * W, material_code(material), dtype=np.uint8)
+    mult = pattern(codes, _plane_points().astype(np.float32), np.ones(H * W, np.float32))
+    return _patch(mult.reshape(H, W))
+
+
+MASK = np.ones((H, W), dtype=bool)
+
+
+@pytest.mark.parametrize(
+    ("material", "expected"),
+    [
+        ("wood", "wood"),
+        ("fabric", "fabric"),
+        ("stone", "stone"),
+        ("metal", "unknown"),
+        ("ceramic", "unknown"),
+        ("glass", "unknown"),
+    ],
+)
+def test_rendered_materials_are_read_back(material: str, expected: str) -> None:
+    assert material_name(_rendered(material), MASK) == expected
+
+
+def test_statistics_separate_grain_weave_and_smooth_faces() -> None:
+    wood = texture_stats(_rendered("wood"), MASK)
+    fabric = texture_stats(_rendered("fabric"), MASK)
+    smooth = texture_stats(_patch(np.ones((H, W))), MASK)
+    assert wood is not None and fabric is not None and smooth is not None
+    assert wood.periodic < -0.3 < fabric.periodic
+    assert fabric.fine > 0.5 > wood.fine
+    # the lighting gradient and the step between the faces leave no texture
+    assert smooth.contrast < 0.01 and classify(smooth) == "unknown"
+
+
+def test_mask_limits_the_pixels_and_tiny_masks_say_nothing() -> None:
+    img = _rendered("fabric")
+    img[:, : W // 2] = _rendered("wood")[:, : W // 2]
+    right = np.zeros((H, W), dtype=bool)
+    right[:, W // 2 + 2 :] = True
+    assert material_name(img, right) == "fabric"
+    tiny = np.zeros((H, W), dtype=bool)
+    tiny[10:15, 10:15] = True
+    assert texture_stats(img, tiny) is None and material_name(img, tiny) == "unknown"
+    assert texture_stats(img, np.zeros((H, W), dtype=bool)) is None
+
+
+def test_render_material_codes_patterns_and_specular() -> None:
+    assert material_code("Wood") == MATERIAL_CODE["wood"] and material_code("paper") == 0
+    pts = _plane_points().astype(np.float32)
+    generic = np.full(len(pts), 0.97, np.float32)
+    assert np.array_equal(pattern(np.zeros(len(pts), np.uint8), pts, generic), generic)
+    noise = value_noise(pts, 100.0)
+    assert (
+        noise.min() >= -1.0
+        and noise.max() <= 1.0
+        and np.array_equal(noise, value_noise(pts, 100.0))
+    )
+    # a mirror-like configuration: the light straight behind the camera
+    n = np.array([[0.0, -1.0, 0.0]] * 2, np.float32)
+    view = np.array([[0.0, 1.0, 0.0]] * 2, np.float32)
+    light = np.array([[0.0, -1.0, 0.0]] * 2, np.float32)
+    codes = np.array([MATERIAL_CODE["metal"], MATERIAL_CODE["wood"]], np.uint8)
+    spec = specular(codes, n, view, light)
+    assert spec[0] > 0.4 and spec[1] == 0.0
