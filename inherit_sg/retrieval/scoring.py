@@ -118,6 +118,12 @@ def _words(text: str) -> set[str]:
     return set(_WORD.findall(text.lower()))
 
 
+# Attributes the mapping measures on objects when the pixels allow it; an object without
+# a value scores this much (a measured mismatch scores 0).
+OBSERVABLE = frozenset({"colour", "material"})
+UNKNOWN_SIM = 0.35
+
+
 def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> tuple[float, str]:
     """Sim of one attribute constraint from measured attributes, else the description."""
     node = snap.node(node_id)
@@ -125,7 +131,7 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     text = ""
     if isinstance(node, ObjectNode):
         have = node.attributes.get(con.key)
-        if isinstance(have, str) and have:
+        if isinstance(have, str) and have and have.lower() != "unknown":
             return (1.0 if have.lower() == value else 0.0), f"{con.key} is {have.lower()}"
         text = node.description
     elif node is not None:
@@ -135,6 +141,9 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     if con.key == "size" and isinstance(node, ObjectNode):
         have = size_class(tuple(float(v) for v in node.bbox.size))  # type: ignore[arg-type]
         return (1.0 if have == value else 0.0), f"box size is {have}"
+    if con.key in OBSERVABLE and isinstance(node, ObjectNode):
+        # not measured is not a mismatch: rank it between a match and a contradiction
+        return UNKNOWN_SIM, f"{con.key} not observed"
     return 0.0, f"no {con.key} '{value}' known"
 
 

@@ -27,7 +27,7 @@ import numpy as np
 from inherit_sg.errors import InheritSGError
 from inherit_sg.model import Frame, Intrinsics, Keyframe, ObjectNode, Pose
 from inherit_sg.perception.base import Segmenter
-from inherit_sg.perception.colour_names import colour_name
+from inherit_sg.perception.colour_names import colour_name, colour_name_in_frame
 from inherit_sg.retrieval.constraints import (
     AttributeConstraint,
     FunctionConstraint,
@@ -106,13 +106,26 @@ def recorded_box(ev: Evidence) -> Box | None:
     return (x0i, y0i, x1i, y1i) if x1i > x0i and y1i > y0i else None
 
 
-def central_crop(image: np.ndarray, box: Box, keep: float = COLOUR_CROP) -> np.ndarray:
-    """The centred ``keep`` share of ``box`` (at least one pixel)."""
+def _central_bounds(box: Box, keep: float) -> Box:
     x0, y0, x1, y1 = box
     dx, dy = (x1 - x0) * (1 - keep) / 2, (y1 - y0) * (1 - keep) / 2
     xa, ya = int(x0 + dx), int(y0 + dy)
-    xb, yb = max(xa + 1, int(x1 - dx)), max(ya + 1, int(y1 - dy))
+    return xa, ya, max(xa + 1, int(x1 - dx)), max(ya + 1, int(y1 - dy))
+
+
+def central_crop(image: np.ndarray, box: Box, keep: float = COLOUR_CROP) -> np.ndarray:
+    """The centred ``keep`` share of ``box`` (at least one pixel)."""
+    xa, ya, xb, yb = _central_bounds(box, keep)
     return image[ya : yb + 1, xa : xb + 1]
+
+
+def crop_colour(image: np.ndarray, box: Box) -> str:
+    """Colour name of the central crop of ``box``, exposure-corrected by the rest of the
+    image as at mapping time (:func:`colour_name_in_frame`)."""
+    xa, ya, xb, yb = _central_bounds(box, COLOUR_CROP)
+    mask = np.zeros(image.shape[:2], dtype=bool)
+    mask[ya : yb + 1, xa : xb + 1] = True
+    return colour_name(image, mask) if mask.all() else colour_name_in_frame(image, mask)
 
 
 def graph_failures(ev: Evidence) -> list[str]:
@@ -140,7 +153,7 @@ class OfflineVerifier:
         """Reject on a colour the pixels contradict or a constraint the graph fails."""
         failures = graph_failures(ev)
         if ev.image is not None and box is not None:
-            seen = colour_name(central_crop(ev.image, box))
+            seen = crop_colour(ev.image, box)
             for con in ev.spec.constraints:
                 if not (isinstance(con, AttributeConstraint) and con.key == "colour"):
                     continue

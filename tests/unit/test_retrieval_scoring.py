@@ -11,7 +11,13 @@ from inherit_sg.retrieval.candidates import Candidates
 from inherit_sg.retrieval.constraints import AttributeConstraint
 from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
 from inherit_sg.retrieval.plan import Compiler, NodeSpec
-from inherit_sg.retrieval.scoring import Scored, Scorer, attribute_sim, landmark_quality
+from inherit_sg.retrieval.scoring import (
+    UNKNOWN_SIM,
+    Scored,
+    Scorer,
+    attribute_sim,
+    landmark_quality,
+)
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from tests.unit.retrieval_fixtures import hash_similarity, small_snapshot
 
@@ -105,3 +111,24 @@ def test_attribute_sim_prefers_measured_attributes(snap: MapSnapshot) -> None:
     assert attribute_sim(snap, "obj:c1", red) == (0.0, "colour is blue")
     small = AttributeConstraint(key="size", value="small")
     assert attribute_sim(snap, "obj:m2", small)[0] == 1.0
+
+
+def test_unobserved_attributes_are_neutral_not_mismatches() -> None:
+    snap = small_snapshot()
+    wood = AttributeConstraint(key="material", value="wood")
+    assert attribute_sim(snap, "obj:t1", wood)[0] == 1.0
+    assert attribute_sim(snap, "obj:c2", wood) == (0.0, "material is metal")
+    c2, c3 = snap.objects["obj:c2"], snap.objects["obj:c3"]
+    c2.attributes.pop("material")  # the map could not tell these
+    c2.description = "a chair"
+    c3.attributes["colour"] = "unknown"
+    c3.description = "a chair"
+    sim, why = attribute_sim(snap, "obj:c2", wood)
+    assert 0.0 < sim == UNKNOWN_SIM < 1.0 and why == "material not observed"
+    red = AttributeConstraint(key="colour", value="red")
+    assert attribute_sim(snap, "obj:c3", red) == (UNKNOWN_SIM, "colour not observed")
+    # a wooden chair first, then the one of unknown material, the plastic one last
+    spec = Compiler(snap, hash_similarity()).compile(parse_rules("the wooden chair")).target
+    cands = Candidates(found_by={o: ["test"] for o in ("obj:c1", "obj:c2", "obj:c3")})
+    ranked, _ = Scorer(snap, GraphChecker(snap)).score(spec, cands, {})
+    assert [c.id for c in ranked] == ["obj:c1", "obj:c2", "obj:c3"]

@@ -13,7 +13,15 @@ from inherit_sg.retrieval.query import ParsedQuery, number_constraints
 from inherit_sg.retrieval.rules.clause import Clause
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import match_function
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, ONE, VAGUE
+from inherit_sg.retrieval.rules.phrase import (
+    ANAPHOR,
+    GENERIC,
+    GENERIC_AREA,
+    NP,
+    OBJECT,
+    ONE,
+    VAGUE,
+)
 
 NO_TARGET = "no object, place or function found in the request"
 _NO_LABEL_KINDS = (GENERIC, GENERIC_AREA, VAGUE, ONE, ANAPHOR)
@@ -92,6 +100,12 @@ def assemble(
     functions = list({f.function: f for f in reversed(functions)}.values())[::-1]
     if not functions and not head.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
         functions = list(_guess_function(words, notes))
+    elif not functions and head.kind == OBJECT and not head.known and head.words:
+        # an unknown head that is a purpose noun: "I want a long soak" seeks a bathtub
+        functions = list(_guess_function(head.words, notes))
+        if functions:
+            head.kind, head.labels = GENERIC, []
+            own = [c for c in own if c.kind != "attribute"]
     head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]
     target = head.target()
     if head.kind == ONE and functions:

@@ -102,7 +102,9 @@ def global_reason(words: list[str]) -> str | None:
     if j < len(words) and words[j] in _PERSONAL:
         return None  # "how can I …", "how do individuals …" seek something to do
     stems = _stems(words)
-    if words[0] == "what" and stems & _PURPOSE_NOUNS and not stems & {"i", "someone"}:
+    # "what is the use of …" asks about the space; "a spot to use the toilet" does not
+    nouns = {lx.singular(w) for k, w in enumerate(words) if words[k - 1] != "to"}
+    if words[0] == "what" and nouns & _PURPOSE_NOUNS and not stems & {"i", "someone"}:
         return GLOBAL_REASON
     if stems & _SUBJECTS and stems & _PREDICATES:
         return GLOBAL_REASON

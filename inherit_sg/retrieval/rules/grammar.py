@@ -248,6 +248,8 @@ class Grammar(Cursor):
                 pass  # "a chair that is red and made of wood"
             elif tok.has("comma", "and", "or", "but", "than", "sub"):
                 break
+            elif tok.has("be") and tok.has("fverb") and self.at("modal", k=-1):
+                break  # "somewhere I can put my books away": a verb, not "put" = placed
             elif tok.has("be") or (tok.has("rel") and self.at(*_CLAUSE_STARTS, k=1)):
                 after_be = True
             elif tok.has("wh") and tok.text == "where" and self.at("seeker", k=1):

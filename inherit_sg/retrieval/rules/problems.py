@@ -31,6 +31,8 @@ _REQUEST_WORDS = frozenset({
 })  # fmt: skip
 # "needs to stay cold": "need" with a subject other than the speaker states a problem.
 _SPEAKER = frozenset({"i", "we"})
+# Nouns a statement may open with ("books are piling up", "dishes are stacked").
+_PROBLEM_SUBJECTS = frozenset(s for _, subjects, _, _ in PROBLEMS for s in subjects)
 
 
 def _terms(words: list[str]) -> set[str]:
@@ -39,7 +41,9 @@ def _terms(words: list[str]) -> set[str]:
 
 
 def _is_statement(words: list[str]) -> bool:
-    if not words or words[0] not in _SUBJECTS:
+    if not words:
+        return False
+    if words[0] not in _SUBJECTS and lx.singular(words[0]) not in _PROBLEM_SUBJECTS:
         return False
     asks = _REQUEST_WORDS - ({"need"} if words[0] not in _SPEAKER else set())
     return not any(w in asks for w in words)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from inherit_sg.retrieval import lexicon as lx
 from inherit_sg.retrieval.constraints import Constraint, FunctionConstraint
 from inherit_sg.retrieval.rules.cursor import weighted
-from inherit_sg.retrieval.rules.functions import match_function, open_function
+from inherit_sg.retrieval.rules.functions import Sense, match_function, open_function
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT
 from inherit_sg.retrieval.rules.tagger import Tok
 
@@ -93,6 +93,10 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         obj = _objects(g)
     words = [t.text for t in g.toks[start + 1 : g.i]]
     sense = match_function(verb, words, obj.words if obj is not None else None)
+    if sense is None and obj is None and g.at("wh"):
+        sense, words = _wh_object(g, verb, words)
+    if sense is None and tok.has("wh"):
+        return [], None  # "what's a good spot …": a question word, not the verb "what"
     if sense is None and verb in lx.LIGHT_VERBS:
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
@@ -106,6 +110,21 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     # "use the toilet close to the bookshelf": the object's relations place the target
     where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
     return [made, *where], head
+
+
+def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, list[str]]:
+    """A clause object ("check how I look", "see what time it is"): the sense its words
+    give the verb, consuming them up to the next comma or preposition."""
+    snap = g.state()
+    extra: list[str] = []
+    while (t := g.peek()) is not None and not t.has("comma", "prep", "floor", "and"):
+        extra.append(t.text)
+        g.advance()
+    sense = match_function(verb, [*words, *extra])
+    if sense is None:
+        g.restore(snap)
+        return None, words
+    return sense, [*words, *extra]
 
 
 def _object_marker(tok: Tok, verb: str) -> bool:
