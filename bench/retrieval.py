@@ -11,7 +11,10 @@ from the houses' query sets, verification off; per-stage p50 / p99 on the first 
 (new phrases are embedded) and on a repeat pass (phrases cached).
 
 Run: ``python bench/retrieval.py [--seeds 101,102,103,104,105] [--scales 100,1000,10000]
-[--built MAP:DATASET] [--out bench/results/retrieval.json]``
+[--built MAP:DATASET] [--verify] [--no-areas] [--no-verify-segmenter]
+[--out bench/results/retrieval.json]`` (``--seeds ""`` / ``--scales ""`` skip a part; the
+two ``--no-*`` switches are the ablations of ``retrieval.use_areas`` and
+``retrieval.verify_segmenter``).
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ import numpy as np
 from ingest.synthetic.generate import generate_house
 from ingest.synthetic.queries import QueryGT, generate_queries
 from ingest.synthetic.scene import Scene
+from inherit_sg.config import Config
 from inherit_sg.embed import get_text_embedder
 from inherit_sg.eval.retrieval import Answer, evaluate, latency, summarise
 from inherit_sg.exchange.scene_truth import scene_to_graph
@@ -48,6 +52,14 @@ def write_map(graph: SceneGraph, path: Path) -> Path:
     with MapStore.create(path) as store:
         store.write_changes(graph)
     return path
+
+
+def engine_for(store: MapStore, args: argparse.Namespace) -> QueryEngine:
+    """The engine of an accuracy run, with the ablation switches of the command line."""
+    config = Config()
+    config.retrieval.use_areas = not args.no_areas
+    config.retrieval.verify_segmenter = not args.no_verify_segmenter
+    return QueryEngine(store, config)
 
 
 def run_queries(engine: QueryEngine, queries: list[QueryGT], scene: Scene, verify: bool) -> dict:
@@ -75,7 +87,7 @@ def accuracy(args: argparse.Namespace, work: Path) -> dict[str, Any]:
         queries = generate_queries(house.scene, seed)
         path = write_map(scene_to_graph(house.scene), work / f"oracle-{seed}")
         with MapStore.open(path) as store:
-            res = run_queries(QueryEngine(store), queries, house.scene, args.verify)
+            res = run_queries(engine_for(store, args), queries, house.scene, args.verify)
         for system, outs in res.items():
             outcomes.setdefault("oracle map", {}).setdefault(system, []).extend(outs)
         print(f"seed {seed}: {len(queries)} requests, {len(house.scene.objects)} objects")
@@ -84,7 +96,7 @@ def accuracy(args: argparse.Namespace, work: Path) -> dict[str, Any]:
         scene = Scene.load(dataset)
         queries = generate_queries(scene, scene.seed or 0)
         with MapStore.open(map_dir) as store:
-            res = run_queries(QueryEngine(store), queries, scene, args.verify)
+            res = run_queries(engine_for(store, args), queries, scene, args.verify)
         for system, outs in res.items():
             outcomes.setdefault("built map", {}).setdefault(system, []).extend(outs)
     return {
@@ -197,9 +209,20 @@ def main() -> None:
     ap.add_argument("--requests", type=int, default=200, help="requests per latency scale")
     ap.add_argument("--built", action="append", default=[], help="MAP_DIR:DATASET_DIR")
     ap.add_argument("--verify", action="store_true", help="verify answers (accuracy runs)")
+    ap.add_argument("--no-areas", action="store_true", help="ablation: no functional areas")
+    ap.add_argument(
+        "--no-verify-segmenter", action="store_true", help="ablation: verifier without grounding"
+    )
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "retrieval.json")
     args = ap.parse_args()
-    report: dict[str, Any] = {"seeds": args.seeds, "floors": args.floors, "verify": args.verify}
+    report: dict[str, Any] = {
+        "seeds": args.seeds,
+        "floors": args.floors,
+        "verify": args.verify,
+        "use_areas": not args.no_areas,
+        "verify_segmenter": not args.no_verify_segmenter,
+        "built": args.built,
+    }
     with tempfile.TemporaryDirectory(prefix="isg-bench-") as tmp:
         work = Path(tmp)
         if args.seeds or args.built:
