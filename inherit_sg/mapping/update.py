@@ -191,6 +191,7 @@ class HierarchyBuilder:
                     colour,
                     (extent[0], extent[1], extent[2]),
                     room_labels.get(node.room_id or ""),
+                    material=node.attributes.get("material"),
                 )
         for tracked in objects.objects.values():
             node = tracked.node

@@ -15,6 +15,7 @@ import time
 from inherit_sg.errors import ModelUnavailableError
 from inherit_sg.perception.base import Describer, ObjectObservation
 from inherit_sg.perception.colour_names import colour_name
+from inherit_sg.wording import with_article
 
 log = logging.getLogger(__name__)
 
@@ -42,8 +43,14 @@ def _dims(extent: tuple[float, float, float]) -> str:
     return " × ".join(fmt(max(0.0, v)) for v in extent)
 
 
-def _article(word: str) -> str:
-    return "an" if word[:1].lower() in "aeiou" else "a"
+# How a measured material reads before a noun ("wooden table", "stone vase").
+_MATERIAL_ADJECTIVES = {"wood": "wooden", "wool": "woollen"}
+
+
+def _adjective(material: str | None) -> str:
+    if not material or material == "unknown":
+        return ""
+    return _MATERIAL_ADJECTIVES.get(material, material)
 
 
 class TemplateDescriber:
@@ -58,14 +65,21 @@ class TemplateDescriber:
 
 
 def template_description(
-    label: str, colour: str, extent: tuple[float, float, float], room: str | None = None
+    label: str,
+    colour: str,
+    extent: tuple[float, float, float],
+    room: str | None = None,
+    *,
+    material: str | None = None,
 ) -> str:
     """The offline sentence from a label, a colour name ("unknown" to omit it), the 3D
-    extent in metres and the room label; also used to refresh descriptions when fused
-    observations change an object's size or room."""
+    extent in metres, the room label and a measured material (None to omit it); also
+    used to refresh descriptions when fused observations change an object's size, room
+    or material, e.g. "a brown wooden table, about 1.2 × 0.8 × 0.75 m, ..."."""
     label = label.strip().lower() or "object"
-    noun = label if colour == "unknown" else f"{colour} {label}"
-    parts = [f"{_article(noun)} {noun}"]
+    words = [w for w in (colour if colour != "unknown" else "", _adjective(material)) if w]
+    noun = " ".join([*words, label])
+    parts = [with_article(noun)]
     if all(math.isfinite(v) for v in extent) and max(extent) > 0:
         parts.append(f"about {_dims(extent)} m")
         parts.append(f"{size_class(extent)}-sized")

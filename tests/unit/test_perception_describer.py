@@ -8,7 +8,12 @@ import pytest
 from inherit_sg.errors import EndpointError, InputError
 from inherit_sg.perception.base import ObjectObservation
 from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
-from inherit_sg.perception.describer import FallbackDescriber, TemplateDescriber, size_class
+from inherit_sg.perception.describer import (
+    FallbackDescriber,
+    TemplateDescriber,
+    size_class,
+    template_description,
+)
 
 
 def _obs(
@@ -111,3 +116,12 @@ def test_fallback_does_not_hide_bad_input() -> None:
 
     with pytest.raises(InputError):
         FallbackDescriber(Strict(), TemplateDescriber()).describe(_obs((190, 40, 40)))
+
+
+def test_measured_material_is_named_before_the_noun() -> None:
+    text = template_description("table", "brown", (1.2, 0.8, 0.75), "kitchen", material="wood")
+    assert text.startswith("a brown wooden table, about 1.2 × 0.8 × 0.8 m")
+    assert template_description("vase", "unknown", (0.1, 0.1, 0.3), material="stone").startswith(
+        "a stone vase"
+    )
+    assert template_description("armchair", "unknown", (0.8, 0.8, 0.9)).startswith("an armchair")
