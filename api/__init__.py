@@ -1,6 +1,7 @@
 """The REST service of INHerit-SG: a FastAPI app (:func:`api.app.create_app`) that serves
-one or more maps read-only under ``/v1/maps/{name}/…`` as a thin face over
-:class:`inherit_sg.facade.MapService`."""
+one or more maps under ``/v1/maps/{name}/…`` (read-only; writable while a live mapping
+session runs) as a thin face over :class:`inherit_sg.facade.MapService`, plus the web
+viewer at ``/``."""
 
 from __future__ import annotations
 

@@ -1,7 +1,8 @@
 """The FastAPI app: thin routes over :class:`~inherit_sg.facade.MapService`.
 
 ``create_app(maps)`` serves one map (a directory, under its basename), every map inside a
-root folder, or an explicit ``{name: directory}`` dict, read-only, at ``/v1/maps/{name}``.
+root folder, or an explicit ``{name: directory}`` dict at ``/v1/maps/{name}``: read-only,
+except while a live mapping session (``POST …/sessions``) holds a map writable.
 """
 
 from __future__ import annotations
@@ -36,8 +37,8 @@ def _served(request: Request, name: str) -> ServedMap:
 
 
 def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> FastAPI:
-    """The REST app serving ``maps``; each map is opened read-only once, at startup, and
-    closed at shutdown."""
+    """The REST app serving ``maps``; each map is opened read-only once, at startup
+    (reopened writable for a live session), and closed at shutdown."""
     named = resolve_maps(maps)
     cfg = config or load_config()
 
