@@ -132,7 +132,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         """One object with its relations and hierarchy path; 404 when absent."""
         served = _served(request, map)
         with served.lock:
-            return get_object(served.require(), object_id)
+            return get_object(served.require(), object_id, map)
 
     app.include_router(live.router)
     views.install(app)

@@ -86,6 +86,19 @@ class RelationEdge(BaseModel):
     other_label: str
 
 
+class KeyframeRef(BaseModel):
+    """A keyframe an object was detected in (a ``SEEN_IN`` edge)."""
+
+    id: str
+    session_id: str | None
+    timestamp: float | None
+    floor_id: str | None
+    image: str = Field(description="Path of the keyframe's JPEG under this map.")
+    detection: dict[str, Any] | None = Field(
+        None, description="What the segmenter saw there: label, score, pixel bbox."
+    )
+
+
 class HierarchyStep(BaseModel):
     """One ancestor of an object (area, room or floor)."""
 
@@ -95,9 +108,11 @@ class HierarchyStep(BaseModel):
 
 
 class ObjectDetail(ObjectSummary):
-    """An object with its relations and its area → room → floor path."""
+    """An object with its relations, its area → room → floor path and its keyframes."""
 
     bbox_min: list[float] | None
     bbox_max: list[float] | None
     relations: list[RelationEdge]
     hierarchy: list[HierarchyStep]
+    best_keyframe: str | None = Field(None, description="Keyframe of the object's best view.")
+    keyframes: list[KeyframeRef] = Field(default_factory=list, description="Oldest first.")

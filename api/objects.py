@@ -2,10 +2,19 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
+from urllib.parse import quote
 
 from api.listing import page_of
-from api.models import HierarchyStep, ObjectDetail, ObjectPage, ObjectSummary, RelationEdge
+from api.models import (
+    HierarchyStep,
+    KeyframeRef,
+    ObjectDetail,
+    ObjectPage,
+    ObjectSummary,
+    RelationEdge,
+)
 from inherit_sg.errors import NodeNotFoundError
 from inherit_sg.facade import MapService
 
@@ -37,17 +46,19 @@ def list_objects(
     return ObjectPage(objects=objects, total=int(total), limit=limit, offset=offset)
 
 
-def get_object(service: MapService, object_id: str) -> ObjectDetail:
-    """One object with its RELATION edges and its area → room → floor path."""
+def get_object(service: MapService, object_id: str, map_name: str) -> ObjectDetail:
+    """One object with its RELATION edges, its area → room → floor path and the keyframes
+    it was seen in (image links under ``/v1/maps/{map_name}``)."""
     found = service.cypher(
-        f"MATCH (o:Object) WHERE o.id = $id RETURN {_FIELDS}, o.bbox_min, o.bbox_max, o.area_id",
+        f"MATCH (o:Object) WHERE o.id = $id "
+        f"RETURN {_FIELDS}, o.bbox_min, o.bbox_max, o.area_id, o.best_keyframe",
         {"id": object_id},
     )
     if not found.rows:
         raise NodeNotFoundError(f"no object with id {object_id!r} in map {service.store.path}")
     row = found.rows[0]
     base = _summary(row[:7])
-    bbox_min, bbox_max, area_id = row[7:]
+    bbox_min, bbox_max, area_id, best_keyframe = row[7:]
     relations = [
         RelationEdge(
             direction=direction, predicate=p, confidence=c, other_id=oid, other_label=olabel
@@ -77,5 +88,41 @@ def get_object(service: MapService, object_id: str) -> ObjectDetail:
         if hit:
             hierarchy.append(HierarchyStep(layer=layer, id=node_id, label=hit[0][0] or ""))
     return ObjectDetail(
-        **base, bbox_min=bbox_min, bbox_max=bbox_max, relations=relations, hierarchy=hierarchy
+        **base,
+        bbox_min=bbox_min,
+        bbox_max=bbox_max,
+        relations=relations,
+        hierarchy=hierarchy,
+        best_keyframe=best_keyframe or None,
+        keyframes=_keyframes(service, object_id, map_name),
     )
+
+
+def _keyframes(service: MapService, object_id: str, map_name: str) -> list[KeyframeRef]:
+    rows = service.cypher(
+        "MATCH (o:Object)-[e:SEEN_IN]->(k:Keyframe) WHERE o.id = $id "
+        "RETURN k.id, k.session_id, k.timestamp, k.floor_id, e.props "
+        "ORDER BY k.timestamp, k.id",
+        {"id": object_id},
+        max_rows=None,
+    ).rows
+    base = f"/v1/maps/{map_name}/keyframes"
+    return [
+        KeyframeRef(
+            id=kid,
+            session_id=sid,
+            timestamp=ts,
+            floor_id=fid,
+            image=f"{base}/{quote(kid, safe=':')}.jpg",
+            detection=_props(props),
+        )
+        for kid, sid, ts, fid, props in rows
+    ]
+
+
+def _props(text: str | None) -> dict[str, Any] | None:
+    try:
+        value = json.loads(text) if text else None
+    except json.JSONDecodeError:
+        return None
+    return value if isinstance(value, dict) else None

@@ -324,3 +324,22 @@ def test_viewer_page_and_routes_not_shadowed(client: TestClient) -> None:
     assert missing.status_code == 404 and missing.json()["error"] == "not_found"
     wrong_method = client.get(f"/v1/maps/{ORACLE}/query")
     assert wrong_method.status_code == 405
+
+
+def test_object_detail_lists_its_keyframes(client: TestClient) -> None:
+    oid = rows(
+        client,
+        BUILT,
+        "MATCH (o:Object)-[:SEEN_IN]->(k:Keyframe) WHERE o.label <> 'door' "
+        "RETURN o.id, count(k) AS n ORDER BY n DESC, o.id LIMIT 1",
+    )[0][0]
+    detail = get_json(client, f"/v1/maps/{BUILT}/objects/{oid}")
+    kfs = detail["keyframes"]
+    assert kfs and detail["best_keyframe"] in {k["id"] for k in kfs}
+    assert [k["timestamp"] for k in kfs] == sorted(k["timestamp"] for k in kfs)
+    assert kfs[0]["session_id"] == "session:1" and kfs[0]["detection"]["label"]
+    image = client.get(kfs[0]["image"])
+    assert image.status_code == 200 and decode(image.content).shape[2] == 3
+    first = rows(client, ORACLE, "MATCH (o:Object) RETURN o.id ORDER BY o.id LIMIT 1")[0][0]
+    oracle = get_json(client, f"/v1/maps/{ORACLE}/objects/{first}")
+    assert oracle["keyframes"] == [] and oracle["best_keyframe"] is None
