@@ -1,14 +1,14 @@
 """Run ``inherit-sg bench`` on a fixed set of datasets and render ``docs/benchmarks.md``.
 
-The set: generated two-floor houses at 320×240 (seed 201 clean, seed 202 with the
-generator's noisy perception) and the Matterport3D house of
+The set: generated two-floor houses at the generator's default 640×480 (seeds 201 and
+202, each with clean and with the generator's noisy perception) and the Matterport3D house of
 ``../shared/data/real/mp3d/`` rendered with ``inherit-sg sim render-house`` (skipped
 when absent). Each dataset is mapped from its frames by the benchmark itself, so the
 mapping figures are measured too. Results go to ``bench/results/run_all/<name>.json``;
 the page gets tables and figures (``docs/img/bench_*.png``), including latency by map
 size from ``bench/results/retrieval.json``.
 
-    python bench/run_all.py [--max-queries 100] [--no-ablations] [--work DIR]
+    python bench/run_all.py [--max-queries 400] [--no-ablations] [--work DIR]
     python bench/run_all.py --report-only      # re-render the page from the JSON files
 """
 
@@ -29,7 +29,7 @@ RESULTS = ROOT / "bench" / "results" / "run_all"
 SCALE_JSON = ROOT / "bench" / "results" / "retrieval.json"
 DOCS = ROOT / "docs"
 MP3D_HOUSE = ROOT / ".." / "shared" / "data" / "real" / "mp3d" / "example_mp3d_scene.house"
-WIDTH, HEIGHT = 320, 240
+WIDTH, HEIGHT = 640, 480
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,10 @@ class DatasetSpec:
 
 DATASETS = (
     DatasetSpec("house-201-clean", "generated house, seed 201, 2 floors, clean", "house", 201),
+    DatasetSpec(
+        "house-201-noisy", "generated house, seed 201, 2 floors, noisy", "house", 201, "noisy"
+    ),
+    DatasetSpec("house-202-clean", "generated house, seed 202, 2 floors, clean", "house", 202),
     DatasetSpec(
         "house-202-noisy", "generated house, seed 202, 2 floors, noisy", "house", 202, "noisy"
     ),
@@ -128,7 +132,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
 def main() -> None:
     """Run the fixed set (unless --report-only) and render the page."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--max-queries", type=int, default=100, help="requests per dataset")
+    ap.add_argument("--max-queries", type=int, default=400, help="requests per dataset")
     ap.add_argument("--no-ablations", action="store_true")
     ap.add_argument("--report-only", action="store_true", help="only re-render the page")
     ap.add_argument("--work", type=Path, help="keep (and reuse) datasets in this folder")
