@@ -3,7 +3,6 @@ the error mapping, paging and a server-side conversation follow-up."""
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -13,24 +12,16 @@ from fastapi.testclient import TestClient
 from typer.testing import CliRunner
 
 from api.app import create_app
-from ingest.synthetic.generate import generate_house
 from inherit_sg.cli.serve_cmd import serve
 from inherit_sg.errors import MapNotFoundError
-from inherit_sg.facade import import_into_new_map
+from tests.e2e.oracle_maps import oracle_map
 
 NAME = "house3"
 
 
 @pytest.fixture(scope="module")
 def map_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    root = tmp_path_factory.mktemp("api")
-    scene = generate_house(3, 1, 4).scene
-    src = root / "scene.json"
-    src.write_text(json.dumps(scene.to_dict()))
-    out = root / "maps" / NAME
-    out.parent.mkdir()
-    import_into_new_map(src, out, fmt="scene")
-    return out
+    return oracle_map(tmp_path_factory.mktemp("api"), NAME, 3)
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,6 @@ their own tests cover; the session status GET stays in.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
@@ -21,9 +20,8 @@ from schemathesis.checks import not_a_server_error
 from schemathesis.core.result import Ok
 
 from api.app import create_app
-from ingest.synthetic.generate import generate_house
 from inherit_sg.config import Config
-from inherit_sg.facade import import_into_new_map
+from tests.e2e.oracle_maps import oracle_map
 
 NAME = "fuzzed"
 MAX_EXAMPLES = 15
@@ -41,13 +39,7 @@ schema.config.generation.update(max_examples=MAX_EXAMPLES, deterministic=True)
 
 @pytest.fixture(scope="module")
 def map_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    root = tmp_path_factory.mktemp("api_schema")
-    src = root / "scene.json"
-    src.write_text(json.dumps(generate_house(7, 1, 4).scene.to_dict()))
-    out = root / "maps" / NAME
-    out.parent.mkdir()
-    import_into_new_map(src, out, fmt="scene")
-    return out
+    return oracle_map(tmp_path_factory.mktemp("api_schema"), NAME, 7)
 
 
 @pytest.fixture(scope="module")

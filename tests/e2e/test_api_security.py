@@ -20,11 +20,10 @@ from typer.testing import CliRunner
 
 from api.app import create_app
 from api.security_body import BodyLimitMiddleware
-from ingest.synthetic.generate import generate_house
 from inherit_sg.cli.serve_cmd import exposure_warning, is_loopback, serve
 from inherit_sg.config import Config, ServiceConfig, load_config
 from inherit_sg.errors import ConfigError
-from inherit_sg.facade import import_into_new_map
+from tests.e2e.oracle_maps import oracle_map
 
 NAME = "secure"
 READ, WRITE = "read-key-1", "write-key-1"
@@ -32,13 +31,7 @@ READ, WRITE = "read-key-1", "write-key-1"
 
 @pytest.fixture(scope="module")
 def map_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    root = tmp_path_factory.mktemp("api_security")
-    src = root / "scene.json"
-    src.write_text(json.dumps(generate_house(5, 1, 4).scene.to_dict()))
-    out = root / "maps" / NAME
-    out.parent.mkdir()
-    import_into_new_map(src, out, fmt="scene")
-    return out
+    return oracle_map(tmp_path_factory.mktemp("api_security"), NAME, 5)
 
 
 def keyed_config(**service: Any) -> Config:

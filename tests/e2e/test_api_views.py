@@ -7,7 +7,6 @@ masks); pictures on a small map built from rendered frames (keyframes, masks, st
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from pathlib import Path
 from urllib.parse import quote
@@ -29,8 +28,9 @@ from api.bev import (
     render_bev,
 )
 from ingest.synthetic.generate import generate_house, write_dataset
-from inherit_sg.facade import build_map, import_into_new_map
+from inherit_sg.facade import build_map
 from inherit_sg.model import RoomMask
+from tests.e2e.oracle_maps import oracle_map
 
 ORACLE, BUILT = "oracle", "built"
 
@@ -38,9 +38,7 @@ ORACLE, BUILT = "oracle", "built"
 @pytest.fixture(scope="module")
 def maps_root(tmp_path_factory: pytest.TempPathFactory) -> Path:
     root = tmp_path_factory.mktemp("views")
-    src = root / "scene.json"
-    src.write_text(json.dumps(generate_house(3, 1, 4).scene.to_dict()))
-    import_into_new_map(src, root / "maps" / ORACLE, fmt="scene")
+    oracle_map(root, ORACLE, 3)
     write_dataset(generate_house(3, 1, 4), root / "house", width=128, height=96, workers=2)
     build_map(root / "house", root / "maps" / BUILT)
     return root / "maps"
