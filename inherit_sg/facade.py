@@ -270,11 +270,10 @@ def build_map(
     counters; ``total`` is called once with the number of frames to expect.
     """
     import itertools
-    import time
 
     from ingest.readers import open_dataset
     from inherit_sg.mapping.orchestrator import Mapper
-    from inherit_sg.model import Session
+    from inherit_sg.mapping.sessions import new_session
 
     cfg = config or load_config()
     source = open_dataset(dataset, fmt)
@@ -288,13 +287,8 @@ def build_map(
         else MapStore.create(path, cfg)
     )
     with store:
-        earlier = store.sessions()
-        index = len(earlier) + 1
-        name = session_name or f"session-{index}"
-        if any(s.name == name for s in earlier):
-            raise InputError(f"map {path} already has a session named {name!r}")
-        session = Session(
-            id=f"session:{index}", name=name, started=time.time(), dataset=str(dataset)
+        session = new_session(
+            store, session_name, dataset=str(dataset), default_prefix="session", taken=InputError
         )
         store.upsert_session(session)
         mapper = Mapper(store, cfg, session, progress=progress)

@@ -33,7 +33,8 @@ from inherit_sg.errors import (
     IntakeFullError,
     MapError,
 )
-from inherit_sg.model import Frame, Intrinsics, Pose, Session
+from inherit_sg.mapping.sessions import new_session
+from inherit_sg.model import Frame, Intrinsics, Pose
 from inherit_sg.perception.base import blind_without_instances
 from inherit_sg.store import MapStore
 
@@ -78,15 +79,11 @@ class LiveSession:
             raise InputError("frame_queue and flush_every must be at least 1")
         if not store.writable:
             raise MapError(f"map {store.path} is open read-only; a live session needs write=True")
-        earlier = store.sessions()
-        index = len(earlier) + 1
-        self.name = name or f"live-{index}"
-        if any(s.name == self.name for s in earlier):
-            raise MapError(f"map {store.path} already has a session named {self.name!r}")
         self.store = store
-        self.session = Session(
-            id=f"session:{index}", name=self.name, started=time.time(), dataset="live"
+        self.session = new_session(
+            store, name, dataset="live", default_prefix="live", taken=MapError
         )
+        self.name = self.session.name
         self.mapper = Mapper(
             store, config, self.session, backpressure="drop", flush_every=flush_every
         )
