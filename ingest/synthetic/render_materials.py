@@ -22,17 +22,10 @@ from __future__ import annotations
 
 import numpy as np
 
-MATERIALS: tuple[str, ...] = (
-    "",
-    "wood",
-    "fabric",
-    "leather",
-    "stone",
-    "metal",
-    "ceramic",
-    "plastic",
-    "glass",
-)
+from inherit_sg.perception.material import MATERIAL_NAMES
+
+# Face codes: 0 = no material look, then the project's material names in order.
+MATERIALS: tuple[str, ...] = ("", *MATERIAL_NAMES)
 MATERIAL_CODE: dict[str, int] = {m: i for i, m in enumerate(MATERIALS) if m}
 
 # Per code: specular strength and Blinn-Phong exponent.
