@@ -31,18 +31,19 @@ def build_hierarchy(service: MapService) -> Hierarchy:
         for fid, label, _ in rows("MATCH (f:Floor) RETURN f.id, f.label, f.level ORDER BY f.level")
         if fid is not None
     }
-    rooms: dict[str, TreeNode] = {}
-    room_parent: dict[str, str | None] = {}
-    for rid, label, floor_id in rows("MATCH (r:Room) RETURN r.id, r.label, r.floor_id"):
-        assert rid is not None
-        rooms[rid] = TreeNode(id=rid, label=label or "", layer="room")
-        room_parent[rid] = floor_id
-    areas: dict[str, TreeNode] = {}
-    area_parent: dict[str, str | None] = {}
-    for aid, label, room_id in rows("MATCH (a:Area) RETURN a.id, a.label, a.room_id"):
-        assert aid is not None
-        areas[aid] = TreeNode(id=aid, label=label or "", layer="area")
-        area_parent[aid] = room_id
+
+    def layer(query: str, name: str) -> tuple[dict[str, TreeNode], dict[str, str | None]]:
+        """Nodes of one layer by id, and each one's parent id (id, label, parent rows)."""
+        nodes: dict[str, TreeNode] = {}
+        parent: dict[str, str | None] = {}
+        for nid, label, parent_id in rows(query):
+            assert nid is not None
+            nodes[nid] = TreeNode(id=nid, label=label or "", layer=name)
+            parent[nid] = parent_id
+        return nodes, parent
+
+    rooms, room_parent = layer("MATCH (r:Room) RETURN r.id, r.label, r.floor_id", "room")
+    areas, area_parent = layer("MATCH (a:Area) RETURN a.id, a.label, a.room_id", "area")
     unassigned: list[TreeNode] = []
 
     def attach(node: TreeNode, *parents: TreeNode | None) -> None:
@@ -66,9 +67,7 @@ def build_hierarchy(service: MapService) -> Hierarchy:
         attach(node, rooms.get(area_parent[aid] or ""))
     for rid, node in rooms.items():
         attach(node, floors.get(room_parent[rid] or ""))
-    for node in [*rooms.values(), *areas.values()]:
-        node.children.sort(key=_sort_key)
-    for node in floors.values():
+    for node in [*floors.values(), *rooms.values(), *areas.values()]:
         node.children.sort(key=_sort_key)
     unassigned.sort(key=lambda n: (n.layer, natural_key(n.id)))
     return Hierarchy(floors=list(floors.values()), unassigned=unassigned)
