@@ -26,14 +26,9 @@ from api.models import (
     QueryRequest,
 )
 from api.objects import get_object, list_objects
-from api.state import Registry, ServedMap, resolve_maps
+from api.state import Registry, resolve_maps, served_map
 from inherit_sg import __version__
 from inherit_sg.config import Config, load_config
-
-
-def _served(request: Request, name: str) -> ServedMap:
-    registry: Registry = request.app.state.registry
-    return registry.get(name)
 
 
 def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> FastAPI:
@@ -74,14 +69,14 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
     @app.get("/v1/maps/{map}")
     def map_stats(request: Request, map: str) -> dict[str, Any]:
         """Counts per table, sessions and bytes on disk."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return served.require().stats()
 
     @app.post("/v1/maps/{map}/query")
     def query(request: Request, map: str, body: QueryRequest) -> dict[str, Any]:
         """Answer a natural-language request (the query result JSON of the CLI)."""
-        served = _served(request, map)
+        served = served_map(request, map)
         registry: Registry = request.app.state.registry
         conv = (
             registry.conversation(map, body.conversation_id)
@@ -100,7 +95,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
     @app.post("/v1/maps/{map}/cypher")
     def cypher(request: Request, map: str, body: CypherRequest) -> CypherResponse:
         """Run a read-only Cypher query; write clauses answer 403."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             result = served.require().cypher(
                 body.query,
@@ -121,7 +116,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         offset: Annotated[int, Query(ge=0)] = 0,
     ) -> ObjectPage:
         """A page of objects, ordered by id."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return list_objects(
                 served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
@@ -130,7 +125,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
     @app.get("/v1/maps/{map}/objects/{object_id}")
     def object_detail(request: Request, map: str, object_id: str) -> ObjectDetail:
         """One object with its relations and hierarchy path; 404 when absent."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return get_object(served.require(), object_id, map)
 

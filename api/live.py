@@ -22,15 +22,10 @@ from api.live_frames import (
     parse_pose,
 )
 from api.live_models import FrameAccepted, SessionCreated, SessionRequest
-from api.state import Registry, ServedMap
+from api.state import served_map
 from inherit_sg.errors import FrameError
 
 router = APIRouter()
-
-
-def _served(request: Request, name: str) -> ServedMap:
-    registry: Registry = request.app.state.registry
-    return registry.get(name)
 
 
 @router.post("/v1/maps/{map}/sessions", status_code=201)
@@ -39,7 +34,7 @@ def start_session(
 ) -> SessionCreated:
     """Start a live mapping session (409 while another one runs on this map)."""
     req = body or SessionRequest()
-    live = _served(request, map).start_live(
+    live = served_map(request, map).start_live(
         req.name, frame_queue=req.frame_queue, flush_every=req.flush_every
     )
     return SessionCreated(session_id=live.id, name=live.name, map=map)
@@ -66,7 +61,7 @@ def post_frame(
 ) -> FrameAccepted:
     """Queue one RGB-D frame (202); 400 for a malformed frame, 429 + Retry-After when
     the intake is full, 503 + Retry-After while the session finishes."""
-    live = _served(request, map).active(sid)
+    live = served_map(request, map).active(sid)
     if instance_labels is not None and instances is None:
         raise FrameError("instance_labels: given without an instances image")
     receipt = live.submit(
@@ -84,11 +79,11 @@ def post_frame(
 @router.get("/v1/maps/{map}/sessions/{sid}")
 def session_status(request: Request, map: str, sid: str) -> dict[str, Any]:
     """Counters of a running or finished live session."""
-    return _served(request, map).live_status(sid)
+    return served_map(request, map).live_status(sid)
 
 
 @router.post("/v1/maps/{map}/sessions/{sid}/finish")
 def finish_session(request: Request, map: str, sid: str) -> dict[str, Any]:
     """Finish the session: final update, everything persisted, BEV pictures written under
     ``<map>/bev/``; answers the mapping summary."""
-    return _served(request, map).finish_live(sid)
+    return served_map(request, map).finish_live(sid)

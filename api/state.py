@@ -15,6 +15,8 @@ from collections import OrderedDict
 from pathlib import Path
 from typing import Any
 
+from starlette.requests import Request
+
 from inherit_sg.config import Config
 from inherit_sg.errors import InheritSGError, MapError, MapNotFoundError, NotFoundError
 from inherit_sg.facade import MapService
@@ -198,3 +200,9 @@ class Registry:
         """Close every map."""
         for served in self.maps.values():
             served.close()
+
+
+def served_map(request: Request, name: str) -> ServedMap:
+    """The map called ``name`` served by the app handling ``request`` (404 otherwise)."""
+    registry: Registry = request.app.state.registry
+    return registry.get(name)

@@ -13,7 +13,7 @@ from pydantic import BaseModel
 from api import pictures
 from api.hierarchy import build_hierarchy
 from api.listing import list_areas, list_floors, list_rooms
-from api.state import Registry, ServedMap
+from api.state import Registry, served_map
 from api.view_models import AreaPage, FloorPage, Hierarchy, RoomPage
 
 STATIC = Path(__file__).resolve().parent / "static"
@@ -36,11 +36,6 @@ class MapList(BaseModel):
     """The maps this server serves."""
 
     maps: list[MapEntry]
-
-
-def _served(request: Request, name: str) -> ServedMap:
-    registry: Registry = request.app.state.registry
-    return registry.get(name)
 
 
 def install(app: FastAPI) -> None:
@@ -72,7 +67,7 @@ def install(app: FastAPI) -> None:
         request: Request, map: str, label: LabelQ = None, limit: Limit = 100, offset: Offset = 0
     ) -> FloorPage:
         """A page of floors (by id) with room and object counts."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return list_floors(served.require(), label=label, limit=limit, offset=offset)
 
@@ -86,7 +81,7 @@ def install(app: FastAPI) -> None:
         offset: Offset = 0,
     ) -> RoomPage:
         """A page of rooms (by id) with summary, floor, best view and child counts."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return list_rooms(
                 served.require(), floor=floor, label=label, limit=limit, offset=offset
@@ -103,7 +98,7 @@ def install(app: FastAPI) -> None:
         offset: Offset = 0,
     ) -> AreaPage:
         """A page of functional areas (by id) with summary, room, floor and object count."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return list_areas(
                 served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
@@ -112,7 +107,7 @@ def install(app: FastAPI) -> None:
     @app.get("/v1/maps/{map}/hierarchy")
     def hierarchy(request: Request, map: str) -> Hierarchy:
         """Floors → rooms → areas → objects, ids and labels only."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             return build_hierarchy(served.require())
 
@@ -134,7 +129,7 @@ def install(app: FastAPI) -> None:
         ] = "graph",
     ) -> Response:
         """The bird's-eye view of one floor as PNG."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             if source == "stored":
                 return Response(
@@ -150,7 +145,7 @@ def install(app: FastAPI) -> None:
     )
     def keyframe(request: Request, map: str, keyframe_id: str) -> Response:
         """One keyframe's JPEG (ids like ``kf:session:1:25``, URL-encoded or not)."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             jpeg = pictures.keyframe_jpeg(served.require(), keyframe_id)
         return Response(jpeg, media_type="image/jpeg")
@@ -162,7 +157,7 @@ def install(app: FastAPI) -> None:
     )
     def best_view(request: Request, map: str, node_id: str) -> Response:
         """The best-view keyframe of an object or room; its id in ``X-Keyframe-Id``."""
-        served = _served(request, map)
+        served = served_map(request, map)
         with served.lock:
             service = served.require()
             kf_id = pictures.best_view(service, node_id)
