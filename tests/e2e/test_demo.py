@@ -6,7 +6,6 @@ from __future__ import annotations
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -14,11 +13,7 @@ from pathlib import Path
 
 import httpx
 
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+from tests.local_http import free_port
 
 
 def _wait_ready(base: str, proc: subprocess.Popen[str], timeout_s: float) -> None:
@@ -36,7 +31,7 @@ def _wait_ready(base: str, proc: subprocess.Popen[str], timeout_s: float) -> Non
 
 def test_demo_builds_answers_and_serves(tmp_path: Path) -> None:
     out = tmp_path / "demo"
-    port = _free_port()
+    port = free_port()
     cmd = [
         sys.executable,
         "-m",

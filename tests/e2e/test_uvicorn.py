@@ -4,7 +4,6 @@ the true bed; a session left open is finished when the server shuts down."""
 
 from __future__ import annotations
 
-import socket
 import threading
 import time
 from collections.abc import Iterator
@@ -19,15 +18,10 @@ from api.app import create_app
 from ingest.synthetic.generate import generate_house, write_dataset
 from ingest.synthetic.scene import Scene
 from inherit_sg.store import MapStore
+from tests.local_http import uvicorn_on_loopback
 
 NAME = "house"
 SEED, ROOMS = 4, 5  # a one-floor house with a bedroom
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 @pytest.fixture(scope="module")
@@ -45,20 +39,8 @@ def server(tmp_path: Path) -> Iterator[Served]:
     """An empty map served by uvicorn in a thread: (base URL, map dir, server, thread)."""
     map_dir = tmp_path / NAME
     MapStore.create(map_dir).close()
-    port = free_port()
-    config = uvicorn.Config(create_app(map_dir), host="127.0.0.1", port=port, log_level="warning")
-    srv = uvicorn.Server(config)
-    thread = threading.Thread(target=srv.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not srv.started:
-        assert thread.is_alive() and time.monotonic() < deadline, "uvicorn did not start"
-        time.sleep(0.02)
-    try:
-        yield f"http://127.0.0.1:{port}/v1/maps/{NAME}", map_dir, srv, thread
-    finally:
-        srv.should_exit = True
-        thread.join(timeout=120)
+    with uvicorn_on_loopback(create_app(map_dir)) as (base, srv, thread):
+        yield f"{base}/v1/maps/{NAME}", map_dir, srv, thread
 
 
 def post_frame(http: httpx.Client, url: str, dataset: Path, index: int) -> httpx.Response:

@@ -10,15 +10,11 @@ from __future__ import annotations
 
 import os
 import shutil
-import socket
-import threading
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
 import httpx
 import pytest
-import uvicorn
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
@@ -31,6 +27,7 @@ from api.app import create_app
 from ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.config import Config, ServiceConfig
 from inherit_sg.facade import build_map
+from tests.local_http import uvicorn_on_loopback
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 NAME = "viewer-house"
@@ -67,35 +64,15 @@ def artifacts_dir() -> Path:
     return out
 
 
-def free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 @pytest.fixture(scope="module")
 def base_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     root = tmp_path_factory.mktemp("viewer")
     write_dataset(generate_house(3, 1, 4), root / "house", width=128, height=96, workers=2)
     build_map(root / "house", root / NAME)
     config = Config(service=ServiceConfig(read_keys=[KEY]))
-    port = free_port()
-    server = uvicorn.Server(
-        uvicorn.Config(
-            create_app(root / NAME, config), host="127.0.0.1", port=port, log_level="warning"
-        )
-    )
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + WAIT_S
-    while not server.started:
-        assert thread.is_alive() and time.monotonic() < deadline, "server did not start"
-        time.sleep(0.05)
-    try:
-        yield f"http://127.0.0.1:{port}"
-    finally:
-        server.should_exit = True
-        thread.join(timeout=10)
+    app = create_app(root / NAME, config)
+    with uvicorn_on_loopback(app, start_timeout_s=WAIT_S, stop_timeout_s=10) as (url, _, _):
+        yield url
 
 
 @pytest.fixture(scope="module")

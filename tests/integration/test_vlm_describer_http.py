@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import base64
 import json
-import socket
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -23,7 +22,7 @@ from inherit_sg.perception.base import ObjectObservation
 from inherit_sg.perception.colour_names import colour_name
 from inherit_sg.perception.describer import FallbackDescriber, TemplateDescriber
 from inherit_sg.perception.vlm_describer import VlmDescriber, clean_answer, image_data_url
-from tests.local_http import serve_on_loopback
+from tests.local_http import free_port, serve_on_loopback
 
 
 @dataclass
@@ -177,14 +176,8 @@ def test_timeout_raises_endpoint_error(server: tuple[str, ServerState]) -> None:
     assert time.monotonic() - t0 < 1.0
 
 
-def _closed_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 def test_endpoint_down_raises_and_fallback_describes_offline() -> None:
-    url = f"http://127.0.0.1:{_closed_port()}/v1"
+    url = f"http://127.0.0.1:{free_port()}/v1"
     with pytest.raises(EndpointError, match="cannot reach"):
         _describer(url).describe(_obs())
     fb = FallbackDescriber(_describer(url), TemplateDescriber())
