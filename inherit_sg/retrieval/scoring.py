@@ -5,14 +5,16 @@ ranks where it does. ``Sim`` per constraint kind:
 
 - label / function: the map-label matches resolved by the plan (lexicon or embedding),
   or the vector / full-text evidence of the candidate step;
-- attribute: the node's measured attributes (colour, material, size), else its
-  description; height words rank the candidates by box height;
+- attribute: the node's measured attributes (colour, material), size words relative to
+  the median of the node's kind in the map (:mod:`inherit_sg.retrieval.sizes`), else
+  its description; height words rank the candidates by box height;
 - room / area: the candidate's room / area (found by walking HAS_* edges) against the
   rooms / areas the constraint matched;
 - relation: the GraphRAG check of :mod:`inherit_sg.retrieval.graph_checks`, weighted by
   how well the landmark met its own constraints;
-- superlative: rank within the best-scoring tier (largest by box volume, tallest by box
-  height, closest / farthest to the landmark);
+- superlative: rank within the best-scoring tier (largest by box volume with flat sides
+  floored, tallest by box height; boxes seen in one view are left out when others can
+  be compared; closest / farthest to the landmark);
 - floor: the hard filter ``H_floor`` (all floors when nothing passes: global fallback).
 """
 
@@ -37,6 +39,13 @@ from inherit_sg.retrieval.constraints import (
 from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
 from inherit_sg.retrieval.match import LABEL_SEMANTIC_MAX
 from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, NodeSpec
+from inherit_sg.retrieval.sizes import (
+    linear_size,
+    measured_in_views,
+    robust_volume,
+    size_word,
+    size_word_sim,
+)
 from inherit_sg.retrieval.snapshot import MapSnapshot
 
 # A label / function similarity at least this strong means "is what was named" (exact,
@@ -44,6 +53,8 @@ from inherit_sg.retrieval.snapshot import MapSnapshot
 STRONG_MATCH = 0.5
 # Candidates scoring within this of the best form the tier a superlative ranks.
 SUPERLATIVE_TIER = 0.05
+# Superlatives measured on an object's box (compared only between well-observed boxes).
+BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest"})
 _WORD = re.compile(r"[a-z]+")
 
 
@@ -133,6 +144,11 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
         have = node.attributes.get(con.key)
         if isinstance(have, str) and have and have.lower() != "unknown":
             return (1.0 if have.lower() == value else 0.0), f"{con.key} is {have.lower()}"
+        if con.key == "size" and (ref := snap.kind_sizes.get(node.label.lower())):
+            # size words are relative to the kind: compare with the map's others
+            ratio = linear_size(node) / ref
+            why = f"{size_word(ratio)} for a {node.label.lower()} ({ratio:.2f} × the median)"
+            return size_word_sim(ratio, value), why
         text = node.description
     elif node is not None:
         text = getattr(node, "summary", "")
@@ -279,7 +295,7 @@ class Scorer:
         node = self.snap.node(node_id)
         if con.measure in ("largest", "smallest"):
             if isinstance(node, ObjectNode):
-                return float(node.bbox.volume)
+                return robust_volume(node.bbox.size)
             if isinstance(node, RoomNode) and node.mask is not None:
                 return node.mask.area_m2
             return None
@@ -295,6 +311,21 @@ class Scorer:
             return min(dists) if dists else None
         return None
 
+    def _measured_boxes(self, con: Superlative, tier: list[Scored]) -> list[Scored]:
+        """The tier without objects whose box comes from a single view (often a sliver
+        of a larger object), unless nothing better measured is left to compare."""
+        kept = [
+            c
+            for c in tier
+            if not isinstance(node := self.snap.node(c.id), ObjectNode) or measured_in_views(node)
+        ]
+        if not kept:
+            return tier
+        for cand in tier:
+            if cand not in kept:
+                cand.terms[con.id].why = f"{con.measure}: box seen in one view only, not compared"
+        return kept
+
     def _superlative(
         self, con: Superlative, out: list[Scored], landmarks: Landmarks, notes: list[str]
     ) -> None:
@@ -305,6 +336,8 @@ class Scorer:
             return
         best = max(c.score for c in live)
         tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
+        if con.measure in BOX_MEASURES:
+            tier = self._measured_boxes(con, tier)
         values = {c.id: self._measure(con, c.id, landmarks) for c in tier}
         known = {k: v for k, v in values.items() if v is not None}
         if not known:

@@ -26,6 +26,7 @@ from inherit_sg.model import (
     SceneGraph,
 )
 from inherit_sg.retrieval.rules.tagger import canonical_noun, room_type
+from inherit_sg.retrieval.sizes import kind_sizes
 from inherit_sg.store import MapStore
 
 Version = tuple[int, ...]
@@ -80,6 +81,8 @@ class MapSnapshot:
     hi: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     centre: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     level: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    # median linear size per object label: the reference of size words ("a large mug")
+    kind_sizes: dict[str, float] = field(default_factory=dict)
 
     # ------------------------------------------------------------------ lookups
     @property
@@ -156,6 +159,7 @@ def _index_objects(snap: MapSnapshot) -> None:
     snap.centre = np.array([o.position for o in objs], dtype=float).reshape(-1, 3)
     levels = [snap.level_of(o.id) for o in objs]
     snap.level = np.array([-1 if lv is None else lv for lv in levels], dtype=int)
+    snap.kind_sizes = kind_sizes(objs)
 
 
 def build_snapshot(

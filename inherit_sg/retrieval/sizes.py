@@ -1,0 +1,90 @@
+"""Object sizes as requests mean them: robust to flat boxes and relative to the kind.
+
+Map boxes come from the depth points the cameras saw: a wall clock seen from the front
+has a box a fraction of a millimetre deep, and a part seen in a single view can be a
+sliver of a larger object. Hence:
+
+- sizes are compared by :func:`robust_volume`, the box volume with every side floored
+  at a share of the longest side, so that flat boxes keep the area they show;
+- :func:`measured_in_views` keeps single-view objects out of a comparison when objects
+  seen from several views can be compared instead;
+- size words are relative to the kind: "a large mug" is smaller than "a small table".
+  :func:`kind_sizes` gives the median linear size of each label in the map, and
+  :func:`size_word` names an object's size relative to it.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+from collections.abc import Iterable
+
+from inherit_sg.model import ObjectNode
+
+# Each side counts at least this share of the longest side (flat boxes keep an area).
+FLAT_SHARE = 0.1
+# Linear size relative to the kind's median: below SMALL is small, above LARGE is large.
+SMALL_BELOW = 0.93
+LARGE_ABOVE = 1.1
+# How fast a size word's match falls off outside its band (share of linear size).
+SIZE_SOFTNESS = 0.15
+# Fewest objects of a label that make a reference for relative size words.
+MIN_PEERS = 3
+# Views needed before a box counts as measured for size comparisons.
+MIN_VIEWS = 2
+
+
+def robust_volume(extent: Iterable[float]) -> float:
+    """Box volume with every side floored at ``FLAT_SHARE`` of the longest side."""
+    sides = [max(0.0, float(v)) for v in extent]
+    longest = max(sides, default=0.0)
+    return math.prod(max(s, FLAT_SHARE * longest) for s in sides)
+
+
+def linear_size(node: ObjectNode) -> float:
+    """Cube root of the robust volume of the node's box (metres)."""
+    return robust_volume(node.bbox.size) ** (1.0 / 3.0)
+
+
+def measured_in_views(node: ObjectNode) -> bool:
+    """Whether the node's box was fused from at least ``MIN_VIEWS`` views."""
+    return node.observation_count >= MIN_VIEWS
+
+
+def kind_sizes(objects: Iterable[ObjectNode]) -> dict[str, float]:
+    """Median linear size per label (lower case) over the objects measured in several
+    views; labels with fewer than ``MIN_PEERS`` of them have no reference."""
+    by_label: dict[str, list[float]] = {}
+    for obj in objects:
+        if measured_in_views(obj):
+            by_label.setdefault(obj.label.lower(), []).append(linear_size(obj))
+    return {
+        label: ref
+        for label, sizes in by_label.items()
+        if len(sizes) >= MIN_PEERS and (ref := statistics.median(sizes)) > 0
+    }
+
+
+def size_word(ratio: float) -> str:
+    """small / medium / large from a linear size relative to the kind's median."""
+    if ratio < SMALL_BELOW:
+        return "small"
+    return "large" if ratio > LARGE_ABOVE else "medium"
+
+
+_BANDS = {
+    "small": (0.0, SMALL_BELOW),
+    "medium": (SMALL_BELOW, LARGE_ABOVE),
+    "large": (LARGE_ABOVE, math.inf),
+}
+
+
+def size_word_sim(ratio: float, word: str) -> float:
+    """1 inside the word's band of relative size, falling linearly to 0 at
+    ``SIZE_SOFTNESS`` outside it (words other than small / medium / large: 0)."""
+    band = _BANDS.get(word)
+    if band is None:
+        return 0.0
+    lo, hi = band
+    gap = max(lo - ratio, ratio - hi, 0.0)
+    return max(0.0, 1.0 - gap / SIZE_SOFTNESS)
