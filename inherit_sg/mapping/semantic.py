@@ -138,17 +138,16 @@ class SemanticStream:
 
     def _vote_material(self, node_id: str, frame: Frame, det: Detection) -> None:
         """Material from the texture of each view; views that cannot tell do not vote,
-        and the attribute is kept only while one material has most of the votes."""
-        from inherit_sg.perception.material import material_name
+        and the attribute is kept only while the votes agree (:func:`fuse_votes`)."""
+        from inherit_sg.perception.material import fuse_votes, material_name
 
         votes = self.material_votes.setdefault(node_id, Counter())
         seen = material_name(frame.rgb, det.mask)
         if seen != "unknown":
             votes[seen] += 1
         node = self.objects.objects[node_id].node
-        if votes:
-            best, n = votes.most_common(1)[0]
-            if 2 * n > sum(votes.values()):
-                node.attributes["material"] = best
-                return
-        node.attributes.pop("material", None)
+        fused = fuse_votes(votes)
+        if fused is None:
+            node.attributes.pop("material", None)
+        else:
+            node.attributes["material"] = fused

@@ -15,11 +15,15 @@ on the mask's interior leaves the *texture residual*, described by:
   of metal, glaze, glass).
 
 :func:`material_name` turns them into a name, or ``"unknown"`` when the pixels do not
-say (too few of them, or a smooth surface without a telling highlight).
+say (too few of them, or a smooth surface without a telling highlight). A faint texture
+without grain or flecks reads as plastic (moulding texture); since grain seen from afar
+looks faint too, :func:`fuse_votes` lets plastic stand only when several views agree
+and none showed a textured material.
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,6 +50,13 @@ STRIPES = -0.3  # autocorrelation dip of grain
 FINE = 0.5  # share of the spread at pixel scale: weave rather than grain
 WEAVE = (0.09, 0.145)  # residual spread of a woven surface
 FLECKS = 0.05  # share of dark flecks of stone
+FAINT = 0.008  # residual spread of a faint moulding texture (plastic), below TEXTURED
+NO_GRAIN = -0.2  # a faint texture whose autocorrelation stays above this has no grain
+FEW_FLECKS = 0.004  # ... and at most this share of dark flecks
+# Plastic is a weak reading (faint texture is also what grain looks like from afar): it
+# needs this many views, and no view may show a textured material.
+WEAK_MATERIALS = frozenset({"plastic"})
+MIN_WEAK_VOTES = 2
 
 
 @dataclass(frozen=True)
@@ -116,14 +127,28 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
 
 def classify(stats: TextureStats) -> str:
     """A material name from texture statistics, or "unknown" (smooth surfaces: metal,
-    ceramic, plastic and glass rarely show a telling highlight inside the mask)."""
+    ceramic and glass rarely show a telling highlight inside the mask)."""
     if stats.contrast >= TEXTURED:
         if stats.periodic <= STRIPES or stats.fine < FINE or stats.contrast > WEAVE[1]:
             return "wood"
         return "fabric" if stats.contrast >= WEAVE[0] else "unknown"
     if stats.flecks >= FLECKS:
         return "stone"
+    if stats.contrast >= FAINT and stats.periodic > NO_GRAIN and stats.flecks < FEW_FLECKS:
+        return "plastic"
     return "unknown"
+
+
+def fuse_votes(votes: Mapping[str, int]) -> str | None:
+    """An object's material from the names its views voted ("unknown" views do not
+    vote): the majority of the textured materials when any was seen (None without a
+    majority), else a weak material seen in at least ``MIN_WEAK_VOTES`` views."""
+    strong = {m: n for m, n in votes.items() if m not in WEAK_MATERIALS and n > 0}
+    if strong:
+        best = max(strong, key=lambda m: strong[m])
+        return best if 2 * strong[best] > sum(strong.values()) else None
+    weak = {m: n for m, n in votes.items() if m in WEAK_MATERIALS and n >= MIN_WEAK_VOTES}
+    return max(weak, key=lambda m: weak[m]) if weak else None
 
 
 def material_name(rgb: np.ndarray, mask: np.ndarray) -> str:

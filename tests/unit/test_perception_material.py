@@ -14,7 +14,7 @@ from ingest.synthetic.render_materials import (
     value_noise,
 )
 from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
-from inherit_sg.perception.material import classify, material_name, texture_stats
+from inherit_sg.perception.material import classify, fuse_votes, material_name, texture_stats
 
 H, W = 48, 64
 
@@ -49,6 +49,7 @@ MASK = np.ones((H, W), dtype=bool)
         ("wood", "wood"),
         ("fabric", "fabric"),
         ("stone", "stone"),
+        ("plastic", "plastic"),
         ("metal", "unknown"),
         ("ceramic", "unknown"),
         ("glass", "unknown"),
@@ -99,3 +100,13 @@ def test_render_material_codes_patterns_and_specular() -> None:
     codes = np.array([MATERIAL_CODE["metal"], MATERIAL_CODE["wood"]], np.uint8)
     spec = specular(codes, n, view, light)
     assert spec[0] > 0.4 and spec[1] == 0.0
+
+
+def test_votes_fuse_textured_majorities_and_need_agreeing_views_for_plastic() -> None:
+    assert fuse_votes({"wood": 3, "fabric": 1}) == "wood"
+    assert fuse_votes({"wood": 2, "fabric": 2}) is None
+    # grain seen from afar reads as a faint texture: one textured view outweighs it
+    assert fuse_votes({"wood": 1, "plastic": 5}) == "wood"
+    assert fuse_votes({"plastic": 2}) == "plastic"
+    assert fuse_votes({"plastic": 1}) is None
+    assert fuse_votes({}) is None
