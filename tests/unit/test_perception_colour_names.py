@@ -77,6 +77,18 @@ def test_dark_grey_versus_black_and_white_versus_grey() -> None:
     assert colour_name(shaded_patch((165, 165, 165), 0.6)) == "grey"
 
 
+def test_black_metal_with_a_broad_sheen_stays_black() -> None:
+    # black albedo lit evenly, plus a white specular lobe over most of the surface
+    xs = np.linspace(-1.0, 1.0, 40)
+    sheen = 0.12 * np.clip(1.0 - np.abs(xs) * 1.6, 0.0, None) ** 2
+    lin = srgb_to_linear(np.array([25, 25, 25]))[None, None, :] * np.ones((30, 40, 1))
+    lin = lin + sheen[None, :, None]
+    patch = np.round(linear_to_srgb(lin)).astype(np.uint8)
+    assert colour_name(patch) == "black"
+    # a dark grey surface lit unevenly stays grey: its lower quartile is not dark
+    assert colour_name(shaded_patch((80, 80, 82), 0.3)) == "grey"
+
+
 def test_only_masked_pixels_count() -> None:
     img = np.zeros((20, 20, 3), dtype=np.uint8)
     img[:, :10] = (45, 80, 185)
