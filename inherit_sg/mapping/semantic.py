@@ -113,13 +113,18 @@ class SemanticStream:
         node_of = {m.observation: m.node_id for m in result.matched}
         created = iter(result.created)
         assigned: list[tuple[str, Detection]] = []
+        noise: float | None = None  # the frame's noise floor, measured once when needed
         for i, (obs, det) in enumerate(zip(observations, detections, strict=True)):
             node_id = node_of.get(i)
             if node_id is None:
                 node_id = next(created)
                 self._describe(node_id, frame, det, obs)
             self._vote_colour(node_id, frame, det)
-            self._vote_material(node_id, frame, det)
+            if noise is None:
+                from inherit_sg.perception.material import frame_noise
+
+                noise = frame_noise(frame.rgb)
+            self._vote_material(node_id, frame, det, noise)
             assigned.append((node_id, det))
         return assigned, stats
 
@@ -136,13 +141,14 @@ class SemanticStream:
         node = self.objects.objects[node_id].node
         node.attributes["colour"] = votes.most_common(1)[0][0]
 
-    def _vote_material(self, node_id: str, frame: Frame, det: Detection) -> None:
-        """Material from the texture of each view; views that cannot tell do not vote,
-        and the attribute is kept only while the votes agree (:func:`fuse_votes`)."""
+    def _vote_material(self, node_id: str, frame: Frame, det: Detection, noise: float) -> None:
+        """Material from the texture of each view (``noise``: the frame's noise floor);
+        views that cannot tell do not vote, and the attribute is kept only while the
+        votes agree (:func:`fuse_votes`)."""
         from inherit_sg.perception.material import fuse_votes, material_name
 
         votes = self.material_votes.setdefault(node_id, Counter())
-        seen = material_name(frame.rgb, det.mask)
+        seen = material_name(frame.rgb, det.mask, noise)
         if seen != "unknown":
             votes[seen] += 1
         node = self.objects.objects[node_id].node

@@ -18,11 +18,14 @@ on the mask's interior leaves the *texture residual*, described by:
 say (too few of them, or a smooth surface without a telling highlight). A faint texture
 without grain or flecks reads as plastic (moulding texture); since grain seen from afar
 looks faint too, :func:`fuse_votes` lets plastic stand only when several views agree
-and none showed a textured material.
+and none showed a textured material. Sensor noise looks like texture too: the frame's
+noise floor (:func:`frame_noise`) is taken out of the contrast, and in noisy frames
+faint textures are not read at all.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -53,6 +56,7 @@ FLECKS = 0.05  # share of dark flecks of stone
 FAINT = 0.008  # residual spread of a faint moulding texture (plastic), below TEXTURED
 NO_GRAIN = -0.2  # a faint texture whose autocorrelation stays above this has no grain
 FEW_FLECKS = 0.004  # ... and at most this share of dark flecks
+NOISY = FAINT / 2  # frame noise floor above which a faint texture is not readable
 # Plastic is a weak reading (faint texture is also what grain looks like from afar): it
 # needs this many views, and no view may show a textured material.
 WEAK_MATERIALS = frozenset({"plastic"})
@@ -125,16 +129,45 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
     )
 
 
-def classify(stats: TextureStats) -> str:
+def frame_noise(
+    rgb: np.ndarray, exclude: np.ndarray | None = None, bands: int = 3, rows: int = 16
+) -> float:
+    """The sensor-noise floor of a frame in texture-residual units: the robust spread of
+    the residual over a few horizontal bands of the image, leaving out ``exclude`` (most
+    of a frame is smooth walls, floors and furniture, so the median sees noise, not
+    texture). 0 for a noiseless rendering or when no pixel is left; about 0.01 for
+    Gaussian noise of half a grey level."""
+    h = rgb.shape[0]
+    rows = min(rows, h)
+    if rows < 5:
+        return 0.0
+    vals = []
+    for y in np.linspace(0, h - rows, bands).astype(int):
+        lum = srgb_to_linear(rgb[y : y + rows]) @ _LUMA
+        res = lum / np.maximum(ndimage.median_filter(lum, size=5), 1e-6) - 1.0
+        keep = np.zeros(res.shape, dtype=bool)
+        keep[2:-2, 2:-2] = True
+        if exclude is not None:
+            keep &= ~np.asarray(exclude, dtype=bool)[y : y + rows]
+        vals.append(res[keep])
+    v = np.concatenate(vals)
+    return _robust_spread(v) if v.size >= MIN_PIXELS else 0.0
+
+
+def classify(stats: TextureStats, noise: float = 0.0) -> str:
     """A material name from texture statistics, or "unknown" (smooth surfaces: metal,
-    ceramic and glass rarely show a telling highlight inside the mask)."""
-    if stats.contrast >= TEXTURED:
-        if stats.periodic <= STRIPES or stats.fine < FINE or stats.contrast > WEAVE[1]:
+    ceramic and glass rarely show a telling highlight inside the mask). ``noise`` is
+    the frame's noise floor (:func:`frame_noise`): it is taken out of the contrast, and
+    above ``NOISY`` a faint texture (plastic) cannot be told from noise."""
+    contrast = math.sqrt(max(0.0, stats.contrast**2 - noise**2))
+    if contrast >= TEXTURED:
+        if stats.periodic <= STRIPES or stats.fine < FINE or contrast > WEAVE[1]:
             return "wood"
-        return "fabric" if stats.contrast >= WEAVE[0] else "unknown"
+        return "fabric" if contrast >= WEAVE[0] else "unknown"
     if stats.flecks >= FLECKS:
         return "stone"
-    if stats.contrast >= FAINT and stats.periodic > NO_GRAIN and stats.flecks < FEW_FLECKS:
+    faint = contrast >= FAINT and noise < NOISY
+    if faint and stats.periodic > NO_GRAIN and stats.flecks < FEW_FLECKS:
         return "plastic"
     return "unknown"
 
@@ -151,7 +184,11 @@ def fuse_votes(votes: Mapping[str, int]) -> str | None:
     return max(weak, key=lambda m: weak[m]) if weak else None
 
 
-def material_name(rgb: np.ndarray, mask: np.ndarray) -> str:
-    """The material an object's pixels look like ("unknown" when they do not say)."""
+def material_name(rgb: np.ndarray, mask: np.ndarray, noise: float | None = None) -> str:
+    """The material an object's pixels look like ("unknown" when they do not say);
+    ``noise`` is the frame's :func:`frame_noise` (estimated from the pixels of ``rgb``
+    outside ``mask`` when None)."""
     stats = texture_stats(rgb, mask)
-    return "unknown" if stats is None else classify(stats)
+    if stats is None:
+        return "unknown"
+    return classify(stats, frame_noise(rgb, exclude=mask) if noise is None else noise)

@@ -14,7 +14,13 @@ from ingest.synthetic.render_materials import (
     value_noise,
 )
 from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
-from inherit_sg.perception.material import classify, fuse_votes, material_name, texture_stats
+from inherit_sg.perception.material import (
+    classify,
+    frame_noise,
+    fuse_votes,
+    material_name,
+    texture_stats,
+)
 
 H, W = 48, 64
 
@@ -57,6 +63,7 @@ MASK = np.ones((H, W), dtype=bool)
 )
 def test_rendered_materials_are_read_back(material: str, expected: str) -> None:
     assert material_name(_rendered(material), MASK) == expected
+    assert material_name(*_in_frame(_rendered(material), 0.0)) == expected
 
 
 def test_statistics_separate_grain_weave_and_smooth_faces() -> None:
@@ -75,7 +82,10 @@ def test_mask_limits_the_pixels_and_tiny_masks_say_nothing() -> None:
     img[:, : W // 2] = _rendered("wood")[:, : W // 2]
     right = np.zeros((H, W), dtype=bool)
     right[:, W // 2 + 2 :] = True
-    assert material_name(img, right) == "fabric"
+    # (noise 0: a frame that is half wood grain is no place to measure sensor noise,
+    # frame_noise would take the grain for noise and make the fabric unreadable)
+    assert material_name(img, right, noise=0.0) == "fabric"
+    assert material_name(img, right) == "unknown"
     tiny = np.zeros((H, W), dtype=bool)
     tiny[10:15, 10:15] = True
     assert texture_stats(img, tiny) is None and material_name(img, tiny) == "unknown"
@@ -110,3 +120,32 @@ def test_votes_fuse_textured_majorities_and_need_agreeing_views_for_plastic() ->
     assert fuse_votes({"plastic": 2}) == "plastic"
     assert fuse_votes({"plastic": 1}) is None
     assert fuse_votes({}) is None
+
+
+def _in_frame(patch: np.ndarray, noise: float, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """``patch`` in the middle of a 3× larger frame of smooth wall, with Gaussian sensor
+    noise of ``noise`` grey levels over everything; returns the frame and the mask."""
+    frame = np.zeros((3 * H, 3 * W, 3))
+    frame[:] = _patch(np.ones((H, W)))[H // 2, W // 4]
+    frame[H : 2 * H, W : 2 * W] = patch
+    mask = np.zeros(frame.shape[:2], dtype=bool)
+    mask[H : 2 * H, W : 2 * W] = True
+    noisy = frame + np.random.default_rng(seed).normal(0.0, noise, frame.shape)
+    return np.clip(np.round(noisy), 0, 255).astype(np.uint8), mask
+
+
+def test_sensor_noise_is_not_read_as_texture() -> None:
+    clean, mask = _in_frame(_patch(np.ones((H, W))), 0.0)
+    assert frame_noise(clean) == 0.0
+    smooth, _ = _in_frame(_patch(np.ones((H, W))), 2.0)
+    assert frame_noise(smooth, exclude=mask) > 0.02
+    stats = texture_stats(smooth, mask)
+    assert stats is not None and classify(stats) != "unknown"  # noise alone looks textured
+    assert material_name(smooth, mask) == "unknown"  # the frame's noise floor explains it
+    for sigma in (0.5, 2.0, 5.0):
+        assert material_name(_in_frame(_patch(np.ones((H, W))), sigma)[0], mask) == "unknown"
+        assert material_name(_in_frame(_rendered("fabric"), sigma)[0], mask) == "fabric"
+        assert material_name(_in_frame(_rendered("wood"), sigma)[0], mask) == "wood"
+    # a faint moulding texture is read in a clean frame only
+    assert material_name(_in_frame(_rendered("plastic"), 0.0)[0], mask) == "plastic"
+    assert material_name(_in_frame(_rendered("plastic"), 1.0)[0], mask) == "unknown"
