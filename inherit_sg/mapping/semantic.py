@@ -26,6 +26,8 @@ from inherit_sg.perception.base import (
 
 # Building parts the segmenter may report that are not objects of the map.
 BACKGROUND_LABELS = frozenset({"wall", "floor", "ceiling", "background", "unlabeled", "void"})
+# Keyframes between two measurements of the camera noise floor (materials).
+NOISE_EVERY = 8
 
 
 class LabelEmbedder(Protocol):
@@ -73,6 +75,9 @@ class SemanticStream:
     objects: ObjectMap
     colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
     material_votes: dict[str, Counter[str]] = field(default_factory=dict)
+    # the camera's noise floor, sampled on every NOISE_EVERY-th keyframe with detections
+    noise_samples: list[float] = field(default_factory=list)
+    keyframes_seen: int = 0
     # small things (books, bottles, laptops) cover only ~60–150 px in a 320×240 view
     min_pixels: int = 60
 
@@ -113,20 +118,26 @@ class SemanticStream:
         node_of = {m.observation: m.node_id for m in result.matched}
         created = iter(result.created)
         assigned: list[tuple[str, Detection]] = []
-        noise: float | None = None  # the frame's noise floor, measured once when needed
+        noise = self._noise_floor(frame) if detections else 0.0
         for i, (obs, det) in enumerate(zip(observations, detections, strict=True)):
             node_id = node_of.get(i)
             if node_id is None:
                 node_id = next(created)
                 self._describe(node_id, frame, det, obs)
             self._vote_colour(node_id, frame, det)
-            if noise is None:
-                from inherit_sg.perception.material import frame_noise
-
-                noise = frame_noise(frame.rgb)
             self._vote_material(node_id, frame, det, noise)
             assigned.append((node_id, det))
         return assigned, stats
+
+    def _noise_floor(self, frame: Frame) -> float:
+        """The camera's noise floor for material reading: a property of the sensor, so
+        it is measured on a sample of keyframes (the median of the samples so far)."""
+        from inherit_sg.perception.material import frame_noise
+
+        if self.keyframes_seen % NOISE_EVERY == 0:
+            self.noise_samples.append(frame_noise(frame.rgb))
+        self.keyframes_seen += 1
+        return float(np.median(self.noise_samples))
 
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)

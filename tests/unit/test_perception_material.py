@@ -13,6 +13,7 @@ from ingest.synthetic.render_materials import (
     specular,
     value_noise,
 )
+from inherit_sg.model import Frame, Intrinsics, Pose
 from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
 from inherit_sg.perception.material import (
     classify,
@@ -149,3 +150,42 @@ def test_sensor_noise_is_not_read_as_texture() -> None:
     # a faint moulding texture is read in a clean frame only
     assert material_name(_in_frame(_rendered("plastic"), 0.0)[0], mask) == "plastic"
     assert material_name(_in_frame(_rendered("plastic"), 1.0)[0], mask) == "unknown"
+
+
+def test_the_semantic_stream_samples_the_noise_floor_on_a_share_of_keyframes() -> None:
+    from inherit_sg.config import Config
+    from inherit_sg.mapping.object_map import ObjectMap
+    from inherit_sg.mapping.semantic import NOISE_EVERY, LabelSimilarity, SemanticStream
+    from inherit_sg.perception.registry import (
+        create_describer,
+        create_segmenter,
+        create_visual_encoder,
+    )
+    from tests.unit.retrieval_fixtures import HashEmbedder
+
+    cfg = Config()
+    stream = SemanticStream(
+        create_segmenter(cfg),
+        create_visual_encoder(cfg),
+        create_describer(cfg),
+        ObjectMap(LabelSimilarity(HashEmbedder())),
+    )
+    clean, _ = _in_frame(_patch(np.ones((H, W))), 0.0)
+    noisy, _ = _in_frame(_patch(np.ones((H, W))), 3.0)
+    frames = [noisy] * 3 + [clean] * (2 * NOISE_EVERY)
+    floors = [stream._noise_floor(_frame(rgb)) for rgb in frames]
+    assert len(stream.noise_samples) == 3  # keyframes 0, NOISE_EVERY and 2 · NOISE_EVERY
+    assert floors[0] > 0.02 and floors[-1] == 0.0  # the median follows the camera
+
+
+def _frame(rgb: np.ndarray) -> Frame:
+    h, w = rgb.shape[:2]
+    return Frame(
+        index=0,
+        frame_id="f",
+        timestamp=0.0,
+        rgb=rgb,
+        depth=np.ones((h, w), dtype=np.float32),
+        pose=Pose.identity(),
+        intrinsics=Intrinsics(fx=100.0, fy=100.0, cx=w / 2, cy=h / 2, width=w, height=h),
+    )
