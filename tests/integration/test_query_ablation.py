@@ -7,15 +7,13 @@ from __future__ import annotations
 from collections.abc import Iterator
 from pathlib import Path
 
-import cv2
-import numpy as np
 import pytest
 
 from inherit_sg.config import Config
-from inherit_sg.model import Edge, EdgeKind, Keyframe, ObjectNode, Pose
+from inherit_sg.model import Edge, EdgeKind
 from inherit_sg.retrieval.engine import QueryEngine
 from inherit_sg.store import MapStore
-from tests.unit.retrieval_fixtures import write_small_map
+from tests.unit.retrieval_fixtures import give_best_view, write_small_map
 
 
 def _config(**retrieval: object) -> Config:
@@ -62,31 +60,8 @@ def test_without_areas_area_constraints_do_not_score(store: MapStore) -> None:
     assert flat.query("the sink under the mirror").answer_id == "obj:sk1"
 
 
-def _jpeg(colour: tuple[int, int, int]) -> bytes:
-    img = np.full((240, 320, 3), 128, dtype=np.uint8)
-    img[60:180, 100:200] = colour
-    ok, buf = cv2.imencode(".jpg", img[..., ::-1])
-    assert ok
-    return buf.tobytes()
-
-
 def test_verification_without_the_segmenter_step(store: MapStore) -> None:
-    eye = Pose(tuple(float(v) for v in np.eye(4).ravel()))
-    kf = Keyframe(
-        "kf:1",
-        "s1",
-        0.0,
-        eye,
-        jpeg=_jpeg((190, 40, 40)),
-        width=320,
-        height=240,
-        global_feature=np.ones(256, np.float32),
-    )
-    store.add_keyframes([kf])
-    chair = store.get_node("obj:c3")
-    assert isinstance(chair, ObjectNode)
-    chair.best_keyframe, chair.keyframe_ids = "kf:1", ["kf:1"]
-    store.upsert_nodes([chair])
+    give_best_view(store, "obj:c3", (190, 40, 40))
     # the recorded detection names something else: grounding the label fails
     seen = Edge.make(EdgeKind.SEEN_IN, "obj:c3", "kf:1", label="table", bbox=[100, 60, 199, 179])
     store.upsert_edges([seen])

@@ -8,7 +8,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 from pathlib import Path
 
-import cv2
 import numpy as np
 import pytest
 
@@ -16,12 +15,12 @@ from ingest.synthetic.generate import generate_house
 from ingest.synthetic.queries import generate_queries
 from inherit_sg.errors import QueryTextError
 from inherit_sg.eval.retrieval import evaluate, summarise
-from inherit_sg.model import BBox3D, Edge, EdgeKind, Keyframe, ObjectNode, Pose
+from inherit_sg.model import BBox3D, Edge, EdgeKind, ObjectNode
 from inherit_sg.retrieval.baseline import FlatBaseline
 from inherit_sg.retrieval.conversation import Conversation
 from inherit_sg.retrieval.engine import QueryEngine
 from inherit_sg.store import MapStore
-from tests.unit.retrieval_fixtures import write_small_map
+from tests.unit.retrieval_fixtures import give_best_view, write_small_map
 
 
 @pytest.fixture(scope="module")
@@ -119,12 +118,6 @@ def test_flat_baseline(engine: QueryEngine) -> None:
     assert result.timings_ms["total"] > 0
 
 
-def _jpeg(colour: tuple[int, int, int]) -> bytes:
-    img = np.full((240, 320, 3), 128, np.uint8)
-    img[60:180, 100:200] = colour
-    return cv2.imencode(".jpg", img[..., ::-1])[1].tobytes()
-
-
 def test_map_changes_and_visual_verification(tmp_path: Path) -> None:
     map_dir = write_small_map(tmp_path / "map")
     with MapStore.open(map_dir, write=True) as store:
@@ -149,25 +142,7 @@ def test_map_changes_and_visual_verification(tmp_path: Path) -> None:
         result = engine.query("the mug in the bathroom")
         assert result.answer_id == "obj:new" and engine.snapshot()[0].version != version
         # the red chair's best view shows something blue: verification falls back
-        eye = Pose(tuple(float(v) for v in np.eye(4).ravel()))
-        store.add_keyframes(
-            [
-                Keyframe(
-                    "kf:1",
-                    "s1",
-                    0.0,
-                    eye,
-                    jpeg=_jpeg((45, 80, 185)),
-                    width=320,
-                    height=240,
-                    global_feature=np.ones(256, np.float32),
-                )
-            ]
-        )
-        chair = store.get_node("obj:c3")
-        assert isinstance(chair, ObjectNode)
-        chair.best_keyframe, chair.keyframe_ids = "kf:1", ["kf:1"]
-        store.upsert_nodes([chair])
+        give_best_view(store, "obj:c3", (45, 80, 185))
         store.upsert_edges(
             [
                 Edge.make(

@@ -8,6 +8,7 @@ import hashlib
 import re
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,6 +17,9 @@ from inherit_sg.model import SceneGraph
 from inherit_sg.retrieval.similarity import PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
 from tests.fixtures_scenes import small_scene
+
+if TYPE_CHECKING:
+    from inherit_sg.store import MapStore
 
 DIM = 384
 
@@ -55,6 +59,40 @@ def small_snapshot() -> MapSnapshot:
 def hash_similarity() -> PhraseSimilarity:
     """Phrase similarity over :class:`HashEmbedder`."""
     return PhraseSimilarity(HashEmbedder())
+
+
+def patch_jpeg(colour: tuple[int, int, int]) -> bytes:
+    """A 320×240 grey JPEG with a ``colour`` patch in the box (100, 60)–(199, 179)."""
+    import cv2
+
+    img = np.full((240, 320, 3), 128, dtype=np.uint8)
+    img[60:180, 100:200] = colour
+    ok, buf = cv2.imencode(".jpg", img[..., ::-1])
+    assert ok
+    return buf.tobytes()
+
+
+def give_best_view(store: MapStore, node_id: str, colour: tuple[int, int, int]) -> None:
+    """Store keyframe ``kf:1`` (:func:`patch_jpeg` of ``colour``) and make it the best
+    and only view of object ``node_id``."""
+    from inherit_sg.model import Keyframe, ObjectNode, Pose
+
+    eye = Pose(tuple(float(v) for v in np.eye(4).ravel()))
+    kf = Keyframe(
+        "kf:1",
+        "s1",
+        0.0,
+        eye,
+        jpeg=patch_jpeg(colour),
+        width=320,
+        height=240,
+        global_feature=np.ones(256, np.float32),
+    )
+    store.add_keyframes([kf])
+    node = store.get_node(node_id)
+    assert isinstance(node, ObjectNode)
+    node.best_keyframe, node.keyframe_ids = "kf:1", ["kf:1"]
+    store.upsert_nodes([node])
 
 
 def write_small_map(path: Path) -> Path:
