@@ -10,9 +10,9 @@ from __future__ import annotations
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
-from fastapi import FastAPI, Query, Request
+from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse
 
 from api import live, security, views
@@ -27,6 +27,7 @@ from api.models import (
 )
 from api.objects import get_object, list_objects
 from api.state import Registry, resolve_maps, served_map
+from api.views import FloorQ, LabelQ, Limit, Offset, RoomQ
 from inherit_sg import __version__
 from inherit_sg.config import Config, load_config
 
@@ -109,11 +110,11 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
     def objects(
         request: Request,
         map: str,
-        floor: Annotated[str | None, Query(description="Floor id, e.g. floor:0.")] = None,
-        room: Annotated[str | None, Query(description="Room id.")] = None,
-        label: Annotated[str | None, Query(description="Object label (any case).")] = None,
-        limit: Annotated[int, Query(ge=1, le=1000)] = 100,
-        offset: Annotated[int, Query(ge=0)] = 0,
+        floor: FloorQ = None,
+        room: RoomQ = None,
+        label: LabelQ = None,
+        limit: Limit = 100,
+        offset: Offset = 0,
     ) -> ObjectPage:
         """A page of objects, ordered by id."""
         served = served_map(request, map)

@@ -22,7 +22,8 @@ def _where(filters: Filters) -> tuple[str, dict[str, Any]]:
     return (f" WHERE {' AND '.join(terms)}" if terms else ""), params
 
 
-def _label(value: str | None) -> str | None:
+def label_filter(value: str | None) -> str | None:
+    """A label filter as compared with ``lower(x.label)`` (None: no filter)."""
     return value.lower() if value is not None else None
 
 
@@ -74,7 +75,7 @@ def list_floors(service: MapService, *, label: str | None, limit: int, offset: i
         "Floor",
         "f",
         "f.id, f.label, f.level",
-        [("label", "lower(f.label)", _label(label))],
+        [("label", "lower(f.label)", label_filter(label))],
         limit,
         offset,
     )
@@ -103,7 +104,7 @@ def list_rooms(
         "Room",
         "r",
         "r.id, r.label, r.summary, r.position, r.floor_id, r.best_view",
-        [("floor", "r.floor_id", floor), ("label", "lower(r.label)", _label(label))],
+        [("floor", "r.floor_id", floor), ("label", "lower(r.label)", label_filter(label))],
         limit,
         offset,
     )
@@ -147,7 +148,7 @@ def list_areas(
         [
             ("floor_rooms", "a.room_id", on_floor),
             ("room", "a.room_id", room),
-            ("label", "lower(a.label)", _label(label)),
+            ("label", "lower(a.label)", label_filter(label)),
         ],
         limit,
         offset,

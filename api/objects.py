@@ -6,7 +6,7 @@ import json
 from typing import Any
 from urllib.parse import quote
 
-from api.listing import page_of
+from api.listing import label_filter, page_of
 from api.models import (
     HierarchyStep,
     KeyframeRef,
@@ -39,7 +39,7 @@ def list_objects(
     filters = [
         ("floor", "o.floor_id", floor),
         ("room", "o.room_id", room),
-        ("label", "lower(o.label)", label.lower() if label is not None else None),
+        ("label", "lower(o.label)", label_filter(label)),
     ]
     total, rows = page_of(service, "Object", "o", _FIELDS, filters, limit, offset)
     objects = [ObjectSummary(**_summary(row)) for row in rows]
