@@ -75,8 +75,10 @@ class SemanticStream:
     objects: ObjectMap
     colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
     material_votes: dict[str, Counter[str]] = field(default_factory=dict)
-    # the camera's noise floor, sampled on every NOISE_EVERY-th keyframe with detections
+    # the camera's noise floor: the median of samples taken on every NOISE_EVERY-th
+    # keyframe with detections
     noise_samples: list[float] = field(default_factory=list)
+    noise_floor: float = 0.0
     keyframes_seen: int = 0
     # small things (books, bottles, laptops) cover only ~60–150 px in a 320×240 view
     min_pixels: int = 60
@@ -136,8 +138,9 @@ class SemanticStream:
 
         if self.keyframes_seen % NOISE_EVERY == 0:
             self.noise_samples.append(frame_noise(frame.rgb))
+            self.noise_floor = float(np.median(self.noise_samples))
         self.keyframes_seen += 1
-        return float(np.median(self.noise_samples))
+        return self.noise_floor
 
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)

@@ -314,16 +314,16 @@ class Scorer:
     def _measured_boxes(self, con: Superlative, tier: list[Scored]) -> list[Scored]:
         """The tier without objects whose box comes from a single view (often a sliver
         of a larger object), unless nothing better measured is left to compare."""
-        kept = [
-            c
-            for c in tier
-            if not isinstance(node := self.snap.node(c.id), ObjectNode) or measured_in_views(node)
-        ]
+        kept: list[Scored] = []
+        single: list[Scored] = []
+        for cand in tier:
+            node = self.snap.node(cand.id)
+            measured = not isinstance(node, ObjectNode) or measured_in_views(node)
+            (kept if measured else single).append(cand)
         if not kept:
             return tier
-        for cand in tier:
-            if cand not in kept:
-                cand.terms[con.id].why = f"{con.measure}: box seen in one view only, not compared"
+        for cand in single:
+            cand.terms[con.id].why = f"{con.measure}: box seen in one view only, not compared"
         return kept
 
     def _superlative(
