@@ -47,6 +47,7 @@ MATERIAL_NAMES: tuple[str, ...] = (
 MIN_PIXELS = 80
 _LUMA = np.array([0.2126, 0.7152, 0.0722])
 _LAGS = range(1, 6)
+WIDE = 5  # median window (pixels) of the texture residual; noise is measured with it too
 # Decision thresholds, calibrated on rendered views of training houses.
 TEXTURED = 0.04  # residual spread above which a surface is patterned
 STRIPES = -0.3  # autocorrelation dip of grain
@@ -97,6 +98,12 @@ def _autocorr_min(res: np.ndarray, inside: np.ndarray) -> float:
     return low
 
 
+def texture_residual(lum: np.ndarray, size: int) -> np.ndarray:
+    """Luminance over its local median in a ``size`` window, minus 1: the surface's own
+    pattern (and sensor noise), without shading or the steps between lit faces."""
+    return lum / np.maximum(ndimage.median_filter(lum, size=size), 1e-6) - 1.0
+
+
 def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
     """Statistics of the pixels of ``mask`` in an (H, W, 3) uint8 image (None when too
     few pixels are left after dropping the mask's border)."""
@@ -114,8 +121,8 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
     if n < MIN_PIXELS:
         return None
     lum = srgb_to_linear(rgb[y0:y1, x0:x1]) @ _LUMA
-    wide = lum / np.maximum(ndimage.median_filter(lum, size=5), 1e-6) - 1.0
-    small = lum / np.maximum(ndimage.median_filter(lum, size=3), 1e-6) - 1.0
+    wide = texture_residual(lum, WIDE)
+    small = texture_residual(lum, 3)
     vals = wide[inside]
     contrast = _robust_spread(vals)
     fine = _robust_spread(small[inside]) / max(contrast, 1e-6)
@@ -144,7 +151,7 @@ def frame_noise(
     vals = []
     for y in np.linspace(0, h - rows, bands).astype(int):
         lum = srgb_to_linear(rgb[y : y + rows]) @ _LUMA
-        res = lum / np.maximum(ndimage.median_filter(lum, size=5), 1e-6) - 1.0
+        res = texture_residual(lum, WIDE)
         keep = np.zeros(res.shape, dtype=bool)
         keep[2:-2, 2:-2] = True
         if exclude is not None:
