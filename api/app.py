@@ -86,7 +86,11 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         )
         with served.lock:
             result = served.require().query(
-                body.text, conversation=conv, verify=body.verify, top_k=body.top_k
+                body.text,
+                conversation=conv,
+                verify=body.verify,
+                top_k=body.top_k,
+                viewer=body.viewer.pose() if body.viewer is not None else None,
             )
         out = result.to_dict()
         if body.conversation_id is not None:

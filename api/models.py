@@ -2,11 +2,34 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from inherit_sg.retrieval.viewer import MAX_COORDINATE, ViewerPose
+
 MAX_CYPHER_ROWS = 10_000
+
+Coordinate = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
+
+
+class ViewerIn(BaseModel):
+    """The robot's pose when the request is made, in the map's world frame."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    position: list[Coordinate] = Field(
+        min_length=3, max_length=3, description="[x, y, z] in metres (world frame, z up)."
+    )
+    yaw_deg: float = Field(
+        allow_inf_nan=False,
+        description="Heading in degrees, counter-clockwise from +x (0 = looking along +x).",
+    )
+
+    def pose(self) -> ViewerPose:
+        """As the engine's :class:`ViewerPose`."""
+        x, y, z = self.position
+        return ViewerPose((x, y, z), self.yaw_deg)
 
 
 class QueryRequest(BaseModel):
@@ -22,6 +45,15 @@ class QueryRequest(BaseModel):
     )
     verify: bool | None = Field(None, description="Run the verifier (config default when null).")
     top_k: int | None = Field(None, ge=1, le=100, description="Candidates to return.")
+    viewer: ViewerIn | None = Field(
+        None,
+        description=(
+            "The robot's pose, {position: [x, y, z], yaw_deg}: 'left', 'right', 'in front "
+            "of', ordinals ('the second chair from the left') and 'closest to you' are "
+            "seen from it unless the request names a viewpoint ('facing the window'). "
+            "Without it the viewer is the keyframe that saw most of the candidates."
+        ),
+    )
 
 
 class CypherRequest(BaseModel):

@@ -29,9 +29,9 @@ from ingest.synthetic.scene import ObjectGT, Scene
 from inherit_sg.model import ObjectNode
 from inherit_sg.retrieval.constraints import FunctionConstraint, LabelConstraint
 from inherit_sg.retrieval.engine import QueryEngine
-from inherit_sg.retrieval.rules.tagger import room_type
 from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
 from inherit_sg.store import MapStore
+from inherit_sg.vocab.rooms import room_type
 
 NEAR_M = 1.0
 

@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from inherit_sg.mapping.live import LiveSession
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
+    from inherit_sg.retrieval.viewer import ViewerPose
 
 EXPORT_FORMAT = "inherit-sg-map"
 EXPORT_VERSION = 1
@@ -64,7 +65,8 @@ class MapService:
 
     # ------------------------------------------------------------ reads
     def stats(self) -> dict[str, Any]:
-        """Counts per table, sessions and bytes on disk, with the map's identity."""
+        """Counts per table, sessions and bytes on disk, with the map's identity, the
+        vocabulary it was mapped with and its label space."""
         from inherit_sg.exchange.records import session_to_record
 
         stats = self.store.stats().to_dict()
@@ -75,6 +77,8 @@ class MapService:
             "created": info.created,
             "text_embedder": info.text_embedder,
             "visual_encoder": info.visual_encoder,
+            "vocabulary": info.vocabulary,
+            "label_space": info.label_space,
             **stats,
             "sessions": [session_to_record(s) for s in self.store.sessions()],
             "bytes": {
@@ -106,10 +110,12 @@ class MapService:
         top_k: int | None = None,
         explain: bool = False,
         image: np.ndarray | None = None,
+        viewer: ViewerPose | None = None,
     ) -> QueryResult:
         """Answer a natural-language request (the query result JSON of DESIGN.md §4 is
-        ``.to_dict()``), optionally with a picture of the object (RGB uint8); one engine
-        per service keeps the map in memory between calls."""
+        ``.to_dict()``), optionally with a picture of the object (RGB uint8) and the
+        robot's pose (``viewer``: "left", "right", ordinals are then seen from it); one
+        engine per service keeps the map in memory between calls."""
         from inherit_sg.retrieval.engine import QueryEngine
 
         engine: QueryEngine | None = getattr(self, "_query_engine", None)
@@ -123,6 +129,7 @@ class MapService:
             top_k=top_k,
             explain=explain,
             image=image,
+            viewer=viewer,
         )
 
     def live_session(

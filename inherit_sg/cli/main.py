@@ -7,13 +7,14 @@ facade imports torch, sentence-transformers and lancedb only where they are used
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
 from inherit_sg import __version__
 from inherit_sg.cli import bench_cmd, demo_cmd, map_cmd, parse_cmd, query_cmd, serve_cmd, sim
 from inherit_sg.cli.output import handle_errors, print_json, print_table
+from inherit_sg.vocab import TABLES
 
 app = typer.Typer(
     name="inherit-sg",
@@ -50,10 +51,38 @@ def _root(
     """INHerit-SG command line."""
 
 
+# Labels of the label space listed by `info` (all of them with --json).
+LABELS_SHOWN = 30
+
+
+def vocabulary_line(vocabulary: dict[str, Any]) -> str:
+    """The ``info`` line naming the map's vocabulary: digest and file versions."""
+    if not vocabulary.get("digest"):
+        return "vocabulary: not recorded (map made before vocabularies were recorded)"
+    versions = vocabulary.get("versions") or {}
+    order = sorted(versions, key=lambda n: (TABLES.index(n) if n in TABLES else len(TABLES), n))
+    listed = ", ".join(f"{name} v{versions[name]}" for name in order)
+    return f"vocabulary: {vocabulary['digest']}" + (f" ({listed})" if listed else "")
+
+
+def label_space_line(labels: list[str]) -> str:
+    """The ``info`` line listing the map's label space (the first ``LABELS_SHOWN``)."""
+    if not labels:
+        return "label space: none recorded (it is recorded when a mapping session finishes)"
+    shown = ", ".join(labels[:LABELS_SHOWN])
+    more = (
+        f", … (+{len(labels) - LABELS_SHOWN} more; --json lists all)"
+        if len(labels) > LABELS_SHOWN
+        else ""
+    )
+    return f"label space: {len(labels)} labels: {shown}{more}"
+
+
 @app.command()
 @handle_errors
 def info(map_dir: MapOption, as_json: JsonOption = False) -> None:
-    """Counts per layer and edge type, sessions and bytes on disk of a map."""
+    """Counts per layer and edge type, sessions, vocabulary, label space and bytes on disk
+    of a map."""
     from inherit_sg.facade import MapService
 
     with MapService.open(map_dir) as service:
@@ -71,6 +100,8 @@ def info(map_dir: MapOption, as_json: JsonOption = False) -> None:
             [[s["id"], s["name"], s["frames"], s["keyframes"]] for s in sessions],
             title="sessions",
         )
+    typer.echo(vocabulary_line(stats.get("vocabulary") or {}))
+    typer.echo(label_space_line(stats.get("label_space") or []))
     sizes = stats["bytes"]
     typer.echo("bytes on disk: " + ", ".join(f"{k} {v:,}" for k, v in sizes.items()))
 

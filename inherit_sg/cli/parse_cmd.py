@@ -70,6 +70,9 @@ def render_tree(parsed: ParsedQuery) -> None:
     tree.add(f"target: {head}")
     if parsed.reference != "none":
         tree.add(f"reference: {parsed.reference}")
+    if parsed.viewpoint is not None:
+        view = parsed.viewpoint
+        _add_landmark(tree, view.landmark, f"viewpoint ({view.kind})")
     if parsed.constraints:
         cons = tree.add("constraints")
         for con in parsed.constraints:
@@ -87,7 +90,8 @@ def parse(
     text: Annotated[str, typer.Argument(help="The request, e.g. 'the mug on the table'.")],
     as_json: Annotated[bool, typer.Option("--json", help="Print machine-readable JSON.")] = False,
     parser: Annotated[
-        ParserChoice, typer.Option("--parser", help="rules (offline) or llm (endpoint).")
+        ParserChoice,
+        typer.Option("--parser", help="rules (offline: spaCy + vocabulary) or llm (endpoint)."),
     ] = ParserChoice.rules,
     config: Annotated[
         Path | None, typer.Option("--config", help="Config file (TOML) for the llm parser.")

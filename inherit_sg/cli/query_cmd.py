@@ -1,10 +1,12 @@
 """``inherit-sg query``: answer natural-language requests on a map.
 
 One request: ``inherit-sg query --map DIR "the mug on the kitchen table" [--json]
-[--no-verify] [--explain] [--top-k K] [--conversation FILE]``. Many requests in one
-process: ``inherit-sg query --map DIR --batch IN.jsonl --out OUT.jsonl``; each input line
-is ``{"id", "text"}`` (a ``queries.jsonl`` line works too), each output line the result
-JSON plus ``id`` (or ``{"id", "error": {...}}`` for a line that cannot be answered).
+[--no-verify] [--explain] [--top-k K] [--conversation FILE] [--viewer X,Y,Z,YAW]``.
+Many requests in one process: ``inherit-sg query --map DIR --batch IN.jsonl --out
+OUT.jsonl``; each input line is ``{"id", "text"}`` (a ``queries.jsonl`` line works too)
+and may carry the robot's pose as ``"viewer": {"position": [x, y, z], "yaw_deg": a}``
+(else ``--viewer`` applies); each output line is the result JSON plus ``id`` (or
+``{"id", "error": {...}}`` for a line that cannot be answered).
 
 Register on the main app with ``app.command("query")(query_cmd.query)``.
 """
@@ -25,6 +27,7 @@ if TYPE_CHECKING:
 
     from inherit_sg.facade import MapService
     from inherit_sg.retrieval.result import QueryResult
+    from inherit_sg.retrieval.viewer import ViewerPose
 
 app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
 
@@ -80,6 +83,21 @@ def read_image(path: Path) -> np.ndarray:
     return np.ascontiguousarray(pixels[..., ::-1])
 
 
+def parse_viewer(text: str) -> ViewerPose:
+    """``--viewer X,Y,Z,YAW`` as a pose; InputError naming the value otherwise."""
+    from inherit_sg.retrieval.viewer import ViewerPose
+
+    return ViewerPose.parse(text)
+
+
+def _line_viewer(data: dict[str, Any], default: ViewerPose | None) -> ViewerPose | None:
+    """The pose a batch line carries (``"viewer"``), else ``default``."""
+    from inherit_sg.retrieval.viewer import ViewerPose
+
+    value = data.get("viewer")
+    return default if value is None else ViewerPose.from_dict(value)
+
+
 def _requests(path: Path) -> list[tuple[int, dict[str, Any] | None, str | None]]:
     """(line number, request, problem) for every non-empty line of a JSON-lines file."""
     try:
@@ -110,8 +128,10 @@ def run_batch(
     verify: bool | None,
     top_k: int | None,
     show_progress: bool = True,
+    viewer: ViewerPose | None = None,
 ) -> dict[str, int]:
-    """Answer every request of ``src`` into ``dst``; returns counts."""
+    """Answer every request of ``src`` into ``dst`` (``viewer``: the robot's pose for
+    lines that carry none); returns counts."""
     from rich.progress import Progress
 
     items = _requests(src)
@@ -129,7 +149,8 @@ def run_batch(
                 counts["errors"] += 1
             else:
                 try:
-                    result = service.query(data["text"], verify=verify, top_k=top_k)
+                    pose = _line_viewer(data, viewer)
+                    result = service.query(data["text"], verify=verify, top_k=top_k, viewer=pose)
                 except InheritSGError as exc:
                     record = {"id": rid, "error": exc.to_dict()}
                     counts["errors"] += 1
@@ -168,6 +189,14 @@ def query(
     image: Annotated[
         Path | None, typer.Option("--image", help="A picture of the sought object.")
     ] = None,
+    viewer: Annotated[
+        str | None,
+        typer.Option(
+            "--viewer",
+            help="The robot's pose X,Y,Z,YAW (metres; yaw in degrees counter-clockwise "
+            "from +x): 'left', 'right' and ordinals are seen from it.",
+        ),
+    ] = None,
     config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
     overrides: Annotated[
         list[str] | None, typer.Option("--set", help="Config override section.field=value.")
@@ -181,13 +210,20 @@ def query(
         raise InputError("give either a request TEXT or --batch IN.jsonl (not both)")
     if batch is not None and out is None:
         raise InputError("--batch needs --out OUT.jsonl")
+    pose = parse_viewer(viewer) if viewer is not None else None
     cfg = load_config(config_file, overrides or [])
     verify = False if no_verify else None
     with MapService.open(map_dir, config=cfg) as service:
         if batch is not None:
             assert out is not None
             counts = run_batch(
-                service, batch, out, verify=verify, top_k=top_k, show_progress=not as_json
+                service,
+                batch,
+                out,
+                verify=verify,
+                top_k=top_k,
+                show_progress=not as_json,
+                viewer=pose,
             )
             if as_json:
                 print_json(counts)
@@ -202,7 +238,13 @@ def query(
             conv = load_conversation(conversation)
         picture = read_image(image) if image is not None else None
         result = service.query(
-            text, conversation=conv, verify=verify, top_k=top_k, explain=explain, image=picture
+            text,
+            conversation=conv,
+            verify=verify,
+            top_k=top_k,
+            explain=explain,
+            image=picture,
+            viewer=pose,
         )
         if conv is not None and conversation is not None:
             from inherit_sg.retrieval.history import save_conversation

@@ -1,7 +1,7 @@
 """Functional-area labellers (paper §III-B: "an LLM then processes the textual semantics
 of these clusters to derive functional labels").
 
-:class:`RuleAreaLabeller` is the offline default (rules of :mod:`knowledge`);
+:class:`RuleAreaLabeller` is the offline default (rules of ``areas.toml``);
 :class:`LlmAreaLabeller` asks an OpenAI-compatible chat endpoint and falls back to the
 rules when the endpoint fails or answers something unusable.
 """

@@ -4,7 +4,8 @@ then processes the textual semantics of these clusters to derive functional labe
 
 Clustering is single-linkage on the horizontal gap between object footprints; objects
 standing on another object always join its cluster. The offline labeller scores each
-rule of :data:`knowledge.AREA_RULES` by the labels present.
+rule of the area vocabulary (``areas.toml``, :func:`inherit_sg.vocab.areas.area_rules`)
+by the labels present.
 """
 
 from __future__ import annotations
@@ -16,8 +17,8 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import connected_components
 
-from inherit_sg.mapping.knowledge import AREA_RULES
 from inherit_sg.model import ObjectNode
+from inherit_sg.vocab.areas import area_rules
 from inherit_sg.wording import with_article
 
 CLUSTER_GAP = 0.8
@@ -47,7 +48,7 @@ def label_area(labels: Sequence[str]) -> str:
     """Functional label of a cluster from its object labels (offline rules)."""
     present = Counter(labels)
     best, best_score = "", 0.0
-    for name, (anchors, support) in AREA_RULES.items():
+    for name, (anchors, support) in area_rules().items():
         score = 2.0 * sum(present[a] > 0 for a in anchors) + sum(present[s] > 0 for s in support)
         if sum(present[a] > 0 for a in anchors) == 0:
             score *= 0.25

@@ -45,6 +45,7 @@ from inherit_sg.mapping.update import HierarchyBuilder
 from inherit_sg.model import Edge, EdgeKind, Frame, Keyframe, ObjectNode, ObjectStatus, Session
 from inherit_sg.perception.base import blind_without_instances
 from inherit_sg.store import MapStore
+from inherit_sg.store.mapdir import record_session_vocabulary
 
 log = logging.getLogger(__name__)
 
@@ -319,7 +320,8 @@ class Mapper:
 
     # -------------------------------------------------------------------- finish
     def finish(self, seconds: float) -> BuildSummary:
-        """Final update: missing objects, last flush, the session record."""
+        """Final update: missing objects, last flush, the session record; ``map.json``
+        then records the vocabulary and the map's label space."""
         self.decisions.close()
         missing = self.missing.finish()
         for oid in missing:
@@ -328,6 +330,9 @@ class Mapper:
         self.session.finished = time.time()
         self._updates["final"] += 1
         self.global_update("final update at the end of the session")
+        record_session_vocabulary(
+            self.store.path, self.store.info, (o.label for o in self.graph.objects())
+        )
         stats = self.geometry.stats
         return BuildSummary(
             session_id=self.session.id,

@@ -1,15 +1,21 @@
 """Room labels and summaries from their contents (the offline stand-in for the paper's
-VLM room description from the best viewpoint plus area summaries)."""
+VLM room description from the best viewpoint plus area summaries). Room types, their
+evidence and the floor words come from the room vocabulary (``rooms.toml``,
+:mod:`inherit_sg.vocab.rooms`)."""
 
 from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Sequence
 
-from inherit_sg.mapping.knowledge import ORDINALS, ROOM_EVIDENCE
+from inherit_sg.vocab import rooms as room_vocab
 from inherit_sg.wording import with_article
 
 MIN_EVIDENCE = 2.0
+# Labels a room may hold and still be a hallway when nothing else is in it.
+HALLWAY_LABELS = frozenset(
+    {"door", "window", "painting", "plant", "mirror", "lamp", "stairs", "cabinet"}
+)
 
 
 def infer_room_type(labels: Sequence[str], area_m2: float | None = None) -> str:
@@ -18,17 +24,12 @@ def infer_room_type(labels: Sequence[str], area_m2: float | None = None) -> str:
     present = set(labels)
     scores = {
         rtype: sum(w for lab, w in ev.items() if lab in present)
-        for rtype, ev in ROOM_EVIDENCE.items()
+        for rtype, ev in room_vocab.evidence().items()
     }
     best = max(scores, key=lambda k: scores[k])
     if scores[best] >= MIN_EVIDENCE:
         return best
-    if (
-        len(
-            present - {"door", "window", "painting", "plant", "mirror", "lamp", "stairs", "cabinet"}
-        )
-        == 0
-    ):
+    if not present - HALLWAY_LABELS:
         return "hallway"
     return "room"
 
@@ -37,7 +38,8 @@ def floor_phrase(level: int | None) -> str:
     """ "the ground floor", "the second floor", …"""
     if level is None:
         return "an unknown floor"
-    word = ORDINALS[level] if 0 <= level < len(ORDINALS) else f"level {level}"
+    words = room_vocab.level_words()
+    word = words[level] if 0 <= level < len(words) else f"level {level}"
     return f"the {word} floor"
 
 

@@ -6,45 +6,22 @@ surface does not change with it while its luminance does. We take the median
 chromaticity of the better-lit pixels and the upper-quartile luminance as the "lit"
 brightness, rebuild one representative colour from them, convert it to CIELAB and name
 it after the nearest prototype of a small named palette (several prototypes per name,
-e.g. navy and sky blue are both "blue"). A specular sheen adds white light that shading
-cannot: on a surface whose lower quartile is dark, the lit brightness is capped near
-that quartile, so a shiny black lamp is named black rather than grey.
+e.g. navy and sky blue are both "blue"; the names and prototypes are the colour
+vocabulary, ``colours.toml``). A specular sheen adds white light that shading cannot: on
+a surface whose lower quartile is dark, the lit brightness is capped near that
+quartile, so a shiny black lamp is named black rather than grey.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-COLOUR_NAMES: tuple[str, ...] = (
-    "red",
-    "orange",
-    "yellow",
-    "green",
-    "blue",
-    "purple",
-    "pink",
-    "brown",
-    "black",
-    "white",
-    "grey",
-    "beige",
-)
+from inherit_sg.vocab import colours as colour_vocab
 
-# sRGB prototypes per name: the typical shade first, then common variants.
-_PROTOTYPES: dict[str, tuple[tuple[int, int, int], ...]] = {
-    "red": ((190, 40, 40), (220, 30, 35), (140, 20, 25), (200, 70, 60)),
-    "orange": ((225, 120, 35), (250, 145, 20), (225, 95, 40)),
-    "yellow": ((225, 200, 50), (250, 230, 90), (200, 175, 40)),
-    "green": ((50, 140, 60), (30, 95, 45), (120, 185, 95), (95, 115, 50), (40, 150, 120)),
-    "blue": ((45, 80, 185), (30, 45, 115), (105, 150, 220), (40, 125, 170)),
-    "purple": ((120, 60, 160), (75, 40, 105), (165, 110, 200), (140, 50, 125)),
-    "pink": ((230, 140, 170), (245, 180, 200), (220, 95, 150)),
-    "brown": ((120, 75, 40), (85, 55, 30), (150, 100, 60), (100, 70, 55)),
-    "black": ((30, 30, 30), (12, 12, 14)),
-    "white": ((235, 235, 230), (252, 252, 252)),
-    "grey": ((128, 128, 128), (80, 80, 82), (175, 175, 175), (105, 110, 115)),
-    "beige": ((215, 195, 160), (230, 215, 185), (195, 175, 135)),
-}
+# The named palette and its prototypes come from the colour vocabulary (colours.toml):
+# sRGB prototypes per name, the typical shade first, then common variants.
+COLOUR_NAMES: tuple[str, ...] = colour_vocab.colour_names()
+_PROTOTYPES: dict[str, tuple[tuple[int, int, int], ...]] = colour_vocab.prototypes()
 
 _LUMA = np.array([0.2126, 0.7152, 0.0722], dtype=np.float64)
 # On dark surfaces (SHEEN_CAP × the lower-quartile luminance below DARK_LUMA) the lit

@@ -1,5 +1,5 @@
-"""Retrieval: request parsing into weighted constraints (rule grammar or LLM roles) and
-conversation history."""
+"""Retrieval: request parsing into weighted constraints (spaCy with domain rules, or
+LLM roles) and conversation history."""
 
 from inherit_sg.retrieval.constraints import (
     AreaConstraint,
@@ -9,10 +9,12 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     LabelConstraint,
     Landmark,
+    PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
     Superlative,
     Target,
+    Viewpoint,
 )
 from inherit_sg.retrieval.query import ParsedQuery, describe
 from inherit_sg.retrieval.rules import RuleParser, parse_rules
@@ -26,11 +28,13 @@ __all__ = [
     "LabelConstraint",
     "Landmark",
     "ParsedQuery",
+    "PlacementConstraint",
     "RelationConstraint",
     "RoomConstraint",
     "RuleParser",
     "Superlative",
     "Target",
+    "Viewpoint",
     "describe",
     "parse_rules",
 ]

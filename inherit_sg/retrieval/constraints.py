@@ -16,11 +16,14 @@ Canonical relation predicates (``PREDICATES``), read as ``predicate(target, land
   ("the room with a bed", "the box with a cable in it")
 - ``with`` (bare "with": the landmark is on, in or next to the target)
 - ``facing`` (facing, opposite, across from) · ``in_front_of`` · ``behind`` ·
-  ``left_of`` · ``right_of``
+  ``left_of`` · ``right_of`` (as the viewer sees them: see :class:`Viewpoint`)
 
 "in the kitchen" is a :class:`RoomConstraint`, "in the reading corner" an
 :class:`AreaConstraint`, "on the second floor" a :class:`FloorConstraint`; "closest to the
-door" and "the largest" are a :class:`Superlative`.
+door", "the largest", "the third from the left" and "the middle one" are a
+:class:`Superlative`; "against the wall", "in the corner" and "in the centre of the room"
+a :class:`PlacementConstraint`. A part ("the bin with the yellow lid", "the chair with
+wheels") is an :class:`AttributeConstraint` with key ``part``.
 
 Floors use the US convention shared with the synthetic ground truth: "ground floor" =
 "first floor" = level 0 (the lowest), "second floor" = 1, "floor 2" = 1; relative words
@@ -28,7 +31,7 @@ are ``upstairs`` (every floor above the lowest), ``downstairs`` (the lowest), ``
 (the highest) and ``bottom`` (basement / lowest floor).
 
 Intent weighting (``DEFAULT_WEIGHTS``): target label 1.0, function 0.9, relation 0.8,
-superlative 0.8, room 0.7, area 0.6, attribute 0.6; the floor is the separate hard filter
+superlative 0.8, room 0.7, area 0.6, attribute 0.6, placement 0.6; the floor is the separate hard filter
 (weight 1.0, not summed). Negated constraints keep their weight and get polarity -1.
 Emphasis words ("must", "definitely", "only") raise the next constraint's weight by
 ``EMPHASIS_BOOST`` (capped at 1.0); hedges ("maybe", "preferably") halve it.
@@ -59,9 +62,27 @@ PREDICATES = (
     "left_of",
     "right_of",
 )
-MEASURES = ("largest", "smallest", "tallest", "shortest", "closest", "farthest", "ordinal")
+MEASURES = (
+    "largest",
+    "smallest",
+    "tallest",
+    "shortest",
+    "closest",
+    "farthest",
+    "ordinal",
+    "middle",
+)
+# Directions an ordinal counts from, as the viewer sees them ("the second from the left";
+# "front" = nearest the viewer first, "back" = farthest first).
+DIRECTIONS = ("left", "right", "front", "back")
+# Where in its room an object stands ("against the wall", "in the corner", "in the middle
+# of the room").
+PLACEMENTS = ("wall", "corner", "centre")
+# How a request sets the viewer: "facing the windows", "from the door" / "as you enter
+# through the door", "with your back to the TV".
+VIEWPOINT_KINDS = ("facing", "from", "back_to")
 RELATIVE_FLOORS = ("upstairs", "downstairs", "top", "bottom")
-ATTRIBUTE_KEYS = ("colour", "material", "size", "height", "shape", "state", "other")
+ATTRIBUTE_KEYS = ("colour", "material", "size", "height", "shape", "state", "part", "other")
 REFERENCES = ("none", "previous", "other", "exclude_previous", "refine")
 PARSERS = ("rules", "llm")
 
@@ -73,6 +94,7 @@ DEFAULT_WEIGHTS: dict[str, float] = {
     "room": 0.7,
     "area": 0.6,
     "attribute": 0.6,
+    "placement": 0.6,
     "floor": 1.0,
 }
 EMPHASIS_BOOST = 0.3
@@ -260,8 +282,9 @@ class FloorConstraint(_Constraint):
 @dataclass(frozen=True, kw_only=True)
 class Superlative(_Constraint):
     """Rank the candidates: by size/height, by distance to ``landmark`` (to the viewer
-    when None) or by ``ordinal`` position (2 = second; -1 = last), counted from
-    ``direction`` ("left" / "right") when given."""
+    when None), by ``ordinal`` position (2 = second; -1 = last) or the ``middle`` one,
+    counted from ``direction`` (``DIRECTIONS``, as the viewer sees them) when given;
+    without a direction an ordinal counts from the viewer outwards ("the second door")."""
 
     kind: ClassVar[str] = "superlative"
     measure: str = "largest"
@@ -276,6 +299,23 @@ class Superlative(_Constraint):
             (self.measure == "ordinal") == (self.ordinal is not None),
             "an ordinal superlative needs 'ordinal' (and only it)",
         )
+        check(
+            self.direction is None or self.direction in DIRECTIONS,
+            f"superlative direction {self.direction!r} is not one of {DIRECTIONS}",
+        )
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlacementConstraint(_Constraint):
+    """Where in its room the node stands: against a ``wall``, in a ``corner`` or in the
+    ``centre`` (``PLACEMENTS``); measured on the room's floor mask."""
+
+    kind: ClassVar[str] = "placement"
+    where: str = "wall"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check(self.where in PLACEMENTS, f"placement {self.where!r} is not one of {PLACEMENTS}")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -306,6 +346,7 @@ Constraint = Union[  # noqa: UP007 - a runtime alias used by isinstance checks
     FloorConstraint,
     Superlative,
     RelationConstraint,
+    PlacementConstraint,
 ]
 KINDS: dict[str, type[_Constraint]] = {
     c.kind: c
@@ -318,6 +359,7 @@ KINDS: dict[str, type[_Constraint]] = {
         FloorConstraint,
         Superlative,
         RelationConstraint,
+        PlacementConstraint,
     )
 }
 
@@ -344,6 +386,42 @@ class Landmark:
         return cls(
             target=Target.from_dict(data.get("target", {})),
             constraints=tuple(constraint_from_dict(c) for c in data.get("constraints", [])),
+        )
+
+
+@dataclass(frozen=True, kw_only=True)
+class Viewpoint:
+    """Where the speaker stands and looks, for "left", "right", "front" and ordinals.
+
+    ``kind`` (``VIEWPOINT_KINDS``): ``facing`` — looking towards the landmark ("if you
+    face the windows"); ``from`` — standing at the landmark and looking into the room
+    ("from the door", "as you come through the door"); ``back_to`` — looking away from
+    the landmark ("with your back to the TV"). The robot's own pose, when a request
+    carries it, is given to the engine separately (:class:`ViewerPose`).
+    """
+
+    kind: str = "facing"
+    landmark: Landmark = field(default_factory=Landmark)
+    text: str = ""
+
+    def __post_init__(self) -> None:
+        check(
+            self.kind in VIEWPOINT_KINDS,
+            f"viewpoint kind {self.kind!r} is not one of {VIEWPOINT_KINDS}",
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able form."""
+        return {"kind": self.kind, "landmark": self.landmark.to_dict(), "text": self.text}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Viewpoint:
+        """Inverse of :meth:`to_dict`."""
+        check(isinstance(data, dict), "viewpoint must be an object")
+        return cls(
+            kind=str(data.get("kind", "facing")),
+            landmark=Landmark.from_dict(data.get("landmark", {})),
+            text=str(data.get("text", "")),
         )
 
 

@@ -16,15 +16,17 @@ import numpy as np
 
 from inherit_sg.config import Config
 from inherit_sg.errors import InheritSGError, NodeNotFoundError
-from inherit_sg.model import ObjectNode
+from inherit_sg.model import ObjectNode, Pose
 from inherit_sg.perception.base import Segmenter, VisualEncoder, check_image
 from inherit_sg.retrieval.candidates import CandidateGenerator
 from inherit_sg.retrieval.conversation import Conversation
-from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
+from inherit_sg.retrieval.graph_checks import GraphChecker
+from inherit_sg.retrieval.placement import PlacementMeter
 from inherit_sg.retrieval.plan import Compiler, NodeSpec, QueryPlan
 from inherit_sg.retrieval.query import ParsedQuery
+from inherit_sg.retrieval.ranking import rank_spec
 from inherit_sg.retrieval.result import QueryResult, candidate_dict, node_summary
-from inherit_sg.retrieval.scoring import Scored, Scorer, landmark_quality
+from inherit_sg.retrieval.scoring import Scored, Scorer
 from inherit_sg.retrieval.similarity import Embedder, PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, load_snapshot, map_version
 from inherit_sg.retrieval.trace import describe_query, explain_ranking
@@ -36,6 +38,7 @@ from inherit_sg.retrieval.verify import (
     ground,
     skip_grounding,
 )
+from inherit_sg.retrieval.viewer import KeyframeViews, ViewerPose
 from inherit_sg.store import MapStore
 
 
@@ -86,6 +89,7 @@ class QueryEngine:
         self._encoder: VisualEncoder | None = None
         self._snap: MapSnapshot | None = None
         self._checker: GraphChecker | None = None
+        self._helpers: tuple[MapSnapshot, KeyframeViews, PlacementMeter] | None = None
         self._lock = threading.Lock()
 
     # ----------------------------------------------------------- components
@@ -171,6 +175,23 @@ class QueryEngine:
             assert self._checker is not None
             return self._snap, self._checker
 
+    def _keyframe_pose(self, keyframe_id: str) -> Pose | None:
+        try:
+            return self.store.get_keyframe(keyframe_id).pose
+        except NodeNotFoundError:
+            return None
+
+    def helpers(self, snap: MapSnapshot) -> tuple[KeyframeViews, PlacementMeter]:
+        """Per-snapshot caches for scoring: keyframe poses / SEEN_IN index and the
+        rooms' placement fields (kept while ``snap`` is the current snapshot)."""
+        with self._lock:
+            if self._helpers is not None and self._helpers[0] is snap:
+                return self._helpers[1], self._helpers[2]
+            made = (KeyframeViews(snap, self._keyframe_pose), PlacementMeter(snap))
+            if snap is self._snap:
+                self._helpers = (snap, *made)
+            return made
+
     # ---------------------------------------------------------------- steps
     def parse(self, text: str, conversation: Conversation | None = None) -> ParsedQuery:
         """Parse ``text`` and resolve it against the conversation history."""
@@ -187,28 +208,17 @@ class QueryEngine:
         plan: QueryPlan,
         trace: list[str] | None = None,
         view: tuple[MapSnapshot, GraphChecker] | None = None,
+        *,
+        viewer: ViewerPose | None = None,
     ) -> list[Scored]:
-        """Ranked target candidates of ``plan`` (landmarks resolved first)."""
+        """Ranked target candidates of ``plan``: the viewpoint's landmark first, then
+        the other landmarks, recursively; ``viewer`` is the robot's pose, if known."""
         snap, checker = view or self.snapshot()
         gen = CandidateGenerator(self.store, snap, self.similarity)
-        scorer = Scorer(snap, checker)
+        keyframes, placement = self.helpers(snap)
+        scorer = Scorer(snap, checker, robot=viewer, keyframes=keyframes, placement=placement)
         log = trace if trace is not None else []
-
-        def evaluate(spec: NodeSpec) -> list[Scored]:
-            marks: dict[str, Landmarks] = {}
-            for key, sub in spec.landmarks.items():
-                marks[key] = landmark_quality(sub, evaluate(sub))
-                shown = ", ".join(
-                    f"{i} {getattr(snap.node(i), 'label', '')} q={q:.2f}" for i, q in marks[key][:5]
-                )
-                log.append(f"{sub.key}: {len(marks[key])} landmark candidates ({shown or 'none'})")
-            cands = gen.generate(spec, marks)
-            log.extend(cands.notes)
-            ranked, notes = scorer.score(spec, cands, marks)
-            log.extend(notes)
-            return ranked
-
-        return evaluate(plan.target)
+        return rank_spec(plan.target, scorer, gen.generate, log)
 
     # --------------------------------------------------------------- query
     def query(
@@ -220,15 +230,23 @@ class QueryEngine:
         top_k: int | None = None,
         explain: bool = False,
         image: np.ndarray | None = None,
+        viewer: ViewerPose | None = None,
     ) -> QueryResult:
         """Answer one request. Raises QueryTextError for empty / over-long / non-text
         input; a request with nothing to find answers null with the reason in the trace.
         ``image`` (RGB uint8) is a picture of the sought object: its visual feature joins
-        the plan (object_visual index) and adds an appearance term to the score."""
+        the plan (object_visual index) and adds an appearance term to the score.
+        ``viewer`` is the robot's pose: "left", "right", "in front", ordinals and
+        "closest to you" are then seen from it (unless the request sets a viewpoint)."""
         start = time.perf_counter()
         parsed = self.parse(text, conversation)
         timings = {"parse": _ms(start), "retrieve": 0.0, "verify": 0.0}
         trace = describe_query(parsed)
+        if viewer is not None:
+            x, y, z = viewer.position
+            trace.append(
+                f"robot pose given: ({x:.2f}, {y:.2f}, {z:.2f}), heading {viewer.yaw_deg:.0f}°"
+            )
         k = top_k or self.config.retrieval.top_k
         t1 = time.perf_counter()
         view = self.snapshot()
@@ -239,7 +257,7 @@ class QueryEngine:
             return self._finish(result, trace, timings, start)
         feature = self.image_feature(image, trace) if image is not None else None
         plan = Compiler(snap, self.similarity).compile(parsed, feature)
-        ranked = self.rank(plan, trace, view)
+        ranked = self.rank(plan, trace, view, viewer=viewer)
         trace.extend(explain_ranking(snap, ranked, k))
         timings["retrieve"] = _ms(t1)
         t2 = time.perf_counter()

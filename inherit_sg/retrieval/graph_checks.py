@@ -11,10 +11,12 @@ paths share one definition of "on", "next to", "near" ...
 Stored predicates are ``on``, ``above``, ``inside``, ``next to`` and ``near``; the
 request predicates map onto them (``under`` is the inverse of ``above``/``on``,
 ``supports`` the inverse of ``on``, ``contains`` the inverse of ``inside``; a book on
-a bookshelf's shelf lies inside the shelf's box, so ``on`` accepts ``inside`` too). Direction
-words without a viewpoint (``facing``, ``behind``, ``left_of`` …) are approximated by
-``near`` at half strength. ``between`` is geometric: the candidate's centre lies inside
-the segment joining one landmark of each kind, close to it.
+a bookshelf's shelf lies inside the shelf's box, so ``on`` accepts ``inside`` too).
+``facing`` is approximated by ``near`` at half strength, and so are ``left_of``,
+``right_of``, ``in_front_of`` and ``behind`` when no viewer can be formed (with one, the
+scorer decides them geometrically: :mod:`inherit_sg.retrieval.directions`). ``between``
+is geometric: the candidate's centre lies inside the segment joining one landmark of
+each kind, close to it.
 """
 
 from __future__ import annotations

@@ -35,9 +35,10 @@ from inherit_sg.retrieval.constraints import (
     Superlative,
     Target,
 )
-from inherit_sg.retrieval.lexicon_functions import FUNCTIONS
+from inherit_sg.retrieval.labels import request_labels
 from inherit_sg.retrieval.query import ParsedQuery, describe, map_constraints, number_constraints
-from inherit_sg.retrieval.rules.tagger import canonical_noun, room_type
+from inherit_sg.vocab.functions import kinds_serving
+from inherit_sg.vocab.rooms import room_type
 
 _STRS = {"type": "array", "items": {"type": "string"}}
 _NSTR = {"type": ["string", "null"]}
@@ -136,10 +137,7 @@ def _need(ok: bool, where: str, message: str) -> None:
 
 
 def _function_labels(function: str) -> tuple[str, ...]:
-    for name, _, _, labels in FUNCTIONS:
-        if name == function:
-            return labels
-    return ()
+    return kinds_serving(function)
 
 
 def _labels(raw: Any, where: str) -> tuple[str, ...]:
@@ -147,7 +145,7 @@ def _labels(raw: Any, where: str) -> tuple[str, ...]:
           "labels must be a list of strings")  # fmt: skip
     out: list[str] = []
     for label in raw:
-        for canon in canonical_noun(label):
+        for canon in request_labels(label):
             if canon not in out:
                 out.append(canon)
     return tuple(out)

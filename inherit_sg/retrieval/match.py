@@ -5,9 +5,12 @@ map, not with every node: a map has a few dozen distinct labels but thousands of
 objects. The result (:data:`Matches`) maps a map label (objects) or a node id (rooms,
 areas) to ``(similarity, reason)``; nodes absent from it have similarity 0.
 
-Exact matches go through the lexicon's canonical labels and room types ("couch" and
-"sofa" are both ``sofa``); everything else falls back to embedding similarity, graded
-so that only close phrases count.
+Object words are matched in this order, and the reason says which step matched: the
+same word (by lemma), a synonym in the object vocabulary ("couch" and "sofa" are both
+``sofa``; "bedside table" is a ``nightstand``), a kind of the word asked for ("dining
+table" for "table", from the vocabulary's ``is_a`` or the compound's head noun), then
+text-embedding similarity, graded so that only close phrases count. Rooms match by type
+(aliases included), then by embedding similarity of their labels.
 """
 
 from __future__ import annotations
@@ -23,7 +26,6 @@ from inherit_sg.retrieval.constraints import (
     LabelConstraint,
     RoomConstraint,
 )
-from inherit_sg.retrieval.rules.tagger import room_type
 from inherit_sg.retrieval.similarity import (
     LABEL_COS_HI,
     LABEL_COS_LO,
@@ -33,6 +35,8 @@ from inherit_sg.retrieval.similarity import (
     graded,
 )
 from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab.rooms import room_type
 
 Matches = dict[str, tuple[float, str]]
 
@@ -74,7 +78,10 @@ def _semantic(
     top = cos[best, np.arange(len(distinct))]
     values = graded(top, lo, hi) * scale
     found = {
-        text: (float(values[j]), f"'{text}' resembles '{queries[best[j]]}' (cos {top[j]:.2f})")
+        text: (
+            float(values[j]),
+            f"'{text}' resembles '{queries[best[j]]}' (text embedding, cos {top[j]:.2f})",
+        )
         for j, text in enumerate(distinct)
         if values[j] >= MIN_MATCH
     }
@@ -84,29 +91,43 @@ def _semantic(
 
 
 def is_kind_of(label: str, general: str) -> bool:
-    """Whether ``label`` names a kind of ``general`` by its head noun: "dining table"
-    and "table", "bookshelf" and "shelf" (a compound with at least three more letters)."""
+    """Whether ``label`` names a kind of ``general``: by the object vocabulary ("armchair"
+    is a chair, a "sofa" a seat), else by its head noun: "dining table" and "table",
+    "bookshelf" and "shelf" (a compound with at least three more letters)."""
     label, general = label.lower().strip(), general.lower().strip()
     if not general or label == general:
         return False
+    if object_vocab.is_kind_of(label, general):
+        return True
     if label.endswith(" " + general):
         return True
     return " " not in general and label.endswith(general) and len(label) - len(general) >= 3
 
 
+def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float, str] | None:
+    """Exact, synonym or kind-of match of one map label, with the step that matched."""
+    low = label.strip().lower()
+    canon = canonical_labels(label)
+    if low in nouns or low in wanted:
+        return 1.0, f"label '{label}' is the word asked for"
+    hit = wanted.intersection(canon)
+    if hit:
+        return 1.0, f"label '{label}' is a {sorted(hit)[0]} (synonyms)"
+    kind = next((w for w in sorted(wanted) for c in (low, *canon) if is_kind_of(c, w)), None)
+    if kind is not None:
+        return HYPONYM, f"a {label} is a kind of {kind} (vocabulary)"
+    return None
+
+
 def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
     wanted = set(con.labels)
+    nouns = {con.noun.strip().lower()} if con.noun else set()
     out: Matches = {}
     labels = sorted(snap.raw_labels())
     for label in labels:
-        canon = canonical_labels(label)
-        hit = wanted.intersection(canon)
-        if hit:
-            out[label] = (1.0, f"label '{label}' is a {sorted(hit)[0]}")
-            continue
-        kind = next((w for w in sorted(wanted) for c in (label, *canon) if is_kind_of(c, w)), None)
-        if kind is not None:
-            out[label] = (HYPONYM, f"a {label} is a kind of {kind}")
+        found = _object_label(label, wanted, nouns)
+        if found is not None:
+            out[label] = found
     _semantic(out, [*con.labels, con.noun], labels, labels, sim, LABEL_SEMANTIC_MAX)
     return out
 

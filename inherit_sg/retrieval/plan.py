@@ -9,6 +9,11 @@ gets ordered :class:`Step` s — candidate generation by Cypher over the public 
 vector-index and full-text fallbacks, HAS_* / RELATION traversals, scoring — that
 :mod:`inherit_sg.retrieval.candidates` and :mod:`inherit_sg.retrieval.scoring` execute.
 ``--explain`` prints them.
+
+A request's viewpoint ("facing the windows") is compiled like a relation's landmark:
+a spec under the key ``VIEWPOINT`` of the target, resolved before everything else; every
+other spec of the plan carries the :class:`Viewpoint` so its scoring can place the
+viewer (:mod:`inherit_sg.retrieval.viewer`).
 """
 
 from __future__ import annotations
@@ -26,16 +31,19 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     LabelConstraint,
     Landmark,
+    PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
     Superlative,
     Target,
+    Viewpoint,
 )
-from inherit_sg.retrieval.lexicon_functions import FUNCTIONS
+from inherit_sg.retrieval.directions import VIEW_PREDICATES
 from inherit_sg.retrieval.match import Matches, resolve_matches
-from inherit_sg.retrieval.query import ParsedQuery, describe
+from inherit_sg.retrieval.query import ParsedQuery, describe, number_constraints
 from inherit_sg.retrieval.similarity import PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot
+from inherit_sg.vocab.functions import kinds_serving
 
 _LIVE = "coalesce(o.status, 'active') <> 'removed'"
 CYPHER_OBJECTS_BY_LABEL = f"MATCH (o:Object) WHERE o.label IN $labels AND {_LIVE} RETURN o.id"
@@ -60,6 +68,8 @@ CYPHER_LAYER = {
 # The score term of a query image (weighted like a relation: strong, but not the name).
 IMAGE_TERM = "image"
 IMAGE_WEIGHT = 0.8
+# The landmark key of a request's viewpoint in the target spec.
+VIEWPOINT = "viewpoint"
 VECTOR_INDEX = {"object": "object_text", "area": "area_text", "room": "room_text"}
 FULLTEXT_TABLE = {"object": "Object", "area": "Area", "room": "Room"}
 
@@ -71,9 +81,10 @@ class Step:
     ``op`` is one of ``pinned``, ``cypher``, ``neighbours`` (the landmark's RELATION
     neighbourhood), ``vector``, ``fulltext`` (candidate generation; ``fallback`` ones
     run only when the steps before found nothing),
-    ``floor`` (the hard filter), ``traverse`` (a constraint checked by walking HAS_*
-    edges), ``relation`` (a GraphRAG check against a landmark), ``score`` and
-    ``superlative``.
+    ``floor`` (the hard filter), ``viewer`` (where the viewer stands and looks),
+    ``traverse`` (a constraint checked by walking HAS_* edges), ``relation`` (a
+    GraphRAG check against a landmark), ``placement`` (a position in the room's floor
+    mask), ``score`` and ``superlative``.
     """
 
     op: str
@@ -115,6 +126,7 @@ class NodeSpec:
     exclude_ids: tuple[str, ...] = ()
     steps: list[Step] = field(default_factory=list)
     image: np.ndarray | None = None  # visual feature of a query image (the target only)
+    viewpoint: Viewpoint | None = None  # the request's viewpoint (not on its own spec)
 
     @property
     def phrase(self) -> str:
@@ -174,6 +186,24 @@ def resolve_levels(con: FloorConstraint, levels: list[int]) -> frozenset[int]:
     return frozenset(set(levels) - chosen if con.negated else chosen & set(levels))
 
 
+def needs_viewer(spec: NodeSpec) -> bool:
+    """Whether scoring ``spec`` places a viewer: ordinals, "the middle one", "closest to
+    you", and viewer-relative relations between objects."""
+    for con in spec.scored():
+        if isinstance(con, Superlative) and (
+            con.measure in ("ordinal", "middle")
+            or (con.measure in ("closest", "farthest") and con.landmark is None)
+        ):
+            return True
+        if (
+            isinstance(con, RelationConstraint)
+            and con.predicate in VIEW_PREDICATES
+            and spec.layer == "object"
+        ):
+            return True
+    return False
+
+
 def implied_constraints(
     key: str, target: Target, cons: tuple[Constraint, ...]
 ) -> tuple[Constraint, ...]:
@@ -189,7 +219,7 @@ def implied_constraints(
             )
         )
     if target.function and "function" not in kinds and not target.labels:
-        serving = [k for name, _, _, ks in FUNCTIONS if name == target.function for k in ks]
+        serving = kinds_serving(target.function)
         out.append(
             FunctionConstraint(
                 id=f"{prefix}function",
@@ -212,7 +242,15 @@ class Compiler:
     def compile(self, parsed: ParsedQuery, image: np.ndarray | None = None) -> QueryPlan:
         """The plan of ``parsed`` (which must have a target); ``image`` is the visual
         feature of a picture that came with the request (objects only)."""
-        spec = self._spec("target", parsed.target, parsed.constraints, parsed.exclude_ids)
+        vp = parsed.viewpoint
+        spec = self._spec(
+            "target", parsed.target, parsed.constraints, parsed.exclude_ids, viewpoint=vp
+        )
+        if vp is not None:
+            lm = vp.landmark
+            if any(not c.id for c in lm.constraints):
+                lm = Landmark(target=lm.target, constraints=number_constraints(lm.constraints, "v"))
+            spec.landmarks = {VIEWPOINT: self._landmark(VIEWPOINT, lm), **spec.landmarks}
         if image is not None and spec.layer == "object":
             spec.image = image
             at = next(i for i, s in enumerate(spec.steps) if s.fallback or s.op != "cypher")
@@ -238,26 +276,34 @@ class Compiler:
             )
         return QueryPlan(parsed=parsed, target=spec)
 
-    def _landmark(self, key: str, lm: Landmark) -> NodeSpec:
-        return self._spec(key, lm.target, lm.constraints, ())
+    def _landmark(self, key: str, lm: Landmark, viewpoint: Viewpoint | None = None) -> NodeSpec:
+        return self._spec(key, lm.target, lm.constraints, (), viewpoint=viewpoint)
 
     def _spec(
-        self, key: str, target: Target, cons: tuple[Constraint, ...], exclude: tuple[str, ...]
+        self,
+        key: str,
+        target: Target,
+        cons: tuple[Constraint, ...],
+        exclude: tuple[str, ...],
+        *,
+        viewpoint: Viewpoint | None = None,
     ) -> NodeSpec:
         cons = (*implied_constraints(key, target, cons), *cons)
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
+        spec.viewpoint = viewpoint
         if floor is not None:
             spec.levels = resolve_levels(floor, self.snap.levels)
+        vp = viewpoint
         for con in cons:
             if isinstance(con, RelationConstraint):
-                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark)
+                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark, vp)
                 if con.landmark2 is not None:
                     spec.landmarks[f"{con.id}/2"] = self._landmark(
-                        f"{con.id}.landmark2", con.landmark2
+                        f"{con.id}.landmark2", con.landmark2, vp
                     )
             elif isinstance(con, Superlative) and con.landmark is not None:
-                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark)
+                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark, vp)
             found = resolve_matches(con, spec.layer, self.snap, self.sim)
             if found is not None:
                 spec.matches[con.id] = found
@@ -278,6 +324,8 @@ class Compiler:
                     constraint=spec.floor.id,
                 )
             )
+        if needs_viewer(spec) or (spec.viewpoint is not None and spec.key == "target"):
+            steps.append(self._viewer_step(spec))
         for con in spec.scored():
             steps.append(self._constraint_step(spec, con))
         steps.append(
@@ -392,23 +440,53 @@ class Compiler:
             )
         return Step("cypher", spec.key, "every object", CYPHER_ALL_OBJECTS)
 
+    def _viewer_step(self, spec: NodeSpec) -> Step:
+        fallback = (
+            "the robot's pose when the request gives one, else the camera of the keyframe "
+            "that saw most of the candidates, else the room's centre looking at them"
+        )
+        vp = spec.viewpoint
+        if vp is None:
+            return Step("viewer", spec.key, fallback)
+        name = vp.landmark.target.describe()
+        how = {
+            "facing": f"stand behind the candidates and look towards the best {name}",
+            "from": f"stand at the best {name} and look towards the candidates",
+            "back_to": f"stand at the candidates with your back to the best {name}",
+        }[vp.kind]
+        return Step(
+            "viewer",
+            spec.key,
+            f"{vp.kind.replace('_', ' ')} {name} (candidates of {VIEWPOINT}): "
+            f"{how}; if no {name} is found, {fallback}",
+        )
+
     def _constraint_step(self, spec: NodeSpec, con: Constraint) -> Step:
         what = describe(con)
         if isinstance(con, RelationConstraint):
             landmarks = [k for k in (con.id, f"{con.id}/2") if k in spec.landmarks]
             names = " and ".join(spec.landmarks[k].key for k in landmarks)
-            return Step(
-                "relation",
-                spec.key,
-                f"{con.id} {what}: walk RELATION edges to "
-                f"candidates of {names} (box geometry where no edge)",
-                constraint=con.id,
-            )
+            if con.predicate in VIEW_PREDICATES and spec.layer == "object":
+                how = (
+                    f"compare box centres with the candidates of {names} as the viewer sees "
+                    "them ('near' at half strength when no viewer can be formed)"
+                )
+            else:
+                how = f"walk RELATION edges to candidates of {names} (box geometry where no edge)"
+            return Step("relation", spec.key, f"{con.id} {what}: {how}", constraint=con.id)
         if isinstance(con, Superlative):
+            how = "rank the best-scoring tier"
+            if con.measure in ("ordinal", "middle"):
+                how += " by position as the viewer sees it"
+            elif con.measure in ("closest", "farthest") and con.landmark is None:
+                how += " by distance from the viewer"
+            return Step("superlative", spec.key, f"{con.id} {what}: {how}", constraint=con.id)
+        if isinstance(con, PlacementConstraint):
             return Step(
-                "superlative",
+                "placement",
                 spec.key,
-                f"{con.id} {what}: rank the best-scoring tier",
+                f"{con.id} {what}: measure the footprint on its room's floor mask "
+                "(distance to the walls / to the centre)",
                 constraint=con.id,
             )
         found = spec.matches.get(con.id)

@@ -18,9 +18,11 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     LabelConstraint,
     Landmark,
+    PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
     Target,
+    Viewpoint,
     check,
     constraint_from_dict,
     str_tuple,
@@ -91,6 +93,10 @@ def _body(con: Constraint) -> str:
         return con.label
     if isinstance(con, FloorConstraint):
         return str(con.level) if con.level is not None else str(con.relative)
+    if isinstance(con, PlacementConstraint):
+        return {"wall": "against a wall", "corner": "in a corner"}.get(con.where, "in the centre")
+    if con.measure == "middle":
+        return "the middle one" + (f" from the {con.direction}" if con.direction else "")
     if con.ordinal is not None:
         side = f" from the {con.direction}" if con.direction else ""
         return f"#{con.ordinal}{side}"
@@ -113,6 +119,8 @@ class ParsedQuery:
     ("not that one, …") or ``refine`` ("the red one", "what about upstairs?").
     ``no_target_reason`` is set for requests with nothing to find ("how does this space
     encourage socialising?"). ``exclude_ids`` are node ids ruled out by the conversation.
+    ``viewpoint`` is where the speaker stands and looks when the request says so ("facing
+    the windows, the one on the left").
     """
 
     text: str
@@ -123,6 +131,7 @@ class ParsedQuery:
     no_target_reason: str | None = None
     parser: str = "rules"
     notes: tuple[str, ...] = ()
+    viewpoint: Viewpoint | None = None
 
     def __post_init__(self) -> None:
         check(self.reference in REFERENCES, f"reference {self.reference!r} not in {REFERENCES}")
@@ -162,6 +171,7 @@ class ParsedQuery:
             "no_target_reason": self.no_target_reason,
             "parser": self.parser,
             "notes": list(self.notes),
+            "viewpoint": self.viewpoint.to_dict() if self.viewpoint is not None else None,
         }
 
     def to_json(self, indent: int | None = None) -> str:
@@ -182,4 +192,9 @@ class ParsedQuery:
             no_target_reason=data.get("no_target_reason"),
             parser=str(data.get("parser", "rules")),
             notes=str_tuple(data.get("notes", []), "notes"),
+            viewpoint=(
+                Viewpoint.from_dict(data["viewpoint"])
+                if data.get("viewpoint") is not None
+                else None
+            ),
         )

@@ -10,11 +10,20 @@ ranks where it does. ``Sim`` per constraint kind:
   its description; height words rank the candidates by box height;
 - room / area: the candidate's room / area (found by walking HAS_* edges) against the
   rooms / areas the constraint matched;
+- part (an attribute with key ``part``): :mod:`inherit_sg.retrieval.parts`;
 - relation: the GraphRAG check of :mod:`inherit_sg.retrieval.graph_checks`, weighted by
-  how well the landmark met its own constraints;
+  how well the landmark met its own constraints; ``left_of`` / ``right_of`` /
+  ``in_front_of`` / ``behind`` are decided geometrically as the viewer sees them
+  (:mod:`inherit_sg.retrieval.directions`, the viewer from
+  :mod:`inherit_sg.retrieval.viewer`);
+- placement: against a wall, in a corner, in the centre, measured on the room's floor
+  mask (:mod:`inherit_sg.retrieval.placement`);
 - superlative: rank within the best-scoring tier (largest by box volume with flat sides
   floored, tallest by box height; boxes seen in one view are left out when others can
-  be compared; closest / farthest to the landmark);
+  be compared; closest / farthest to the landmark, or to the viewer without one);
+  ordinals and "the middle one" order the tier as the viewer sees it: left to right,
+  by depth (front / back) or by distance from the viewer (no direction); the chosen
+  one gets 1, the others ``ORDINAL_FALLOFF / (1 + |rank - k|)``;
 - floor: the hard filter ``H_floor`` (all floors when nothing passes: global fallback).
 """
 
@@ -25,6 +34,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from inherit_sg.model import ObjectNode, RoomNode
 from inherit_sg.perception.describer import size_class
 from inherit_sg.retrieval.candidates import Candidates
@@ -33,12 +44,17 @@ from inherit_sg.retrieval.constraints import (
     Constraint,
     FunctionConstraint,
     LabelConstraint,
+    PlacementConstraint,
     RelationConstraint,
     Superlative,
 )
+from inherit_sg.retrieval.directions import VIEW_PREDICATES, directional_all
 from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
 from inherit_sg.retrieval.match import LABEL_SEMANTIC_MAX
-from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, NodeSpec
+from inherit_sg.retrieval.ordinals import place
+from inherit_sg.retrieval.parts import part_sim
+from inherit_sg.retrieval.placement import PlacementMeter
+from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, VIEWPOINT, NodeSpec
 from inherit_sg.retrieval.sizes import (
     linear_size,
     measured_in_views,
@@ -47,7 +63,10 @@ from inherit_sg.retrieval.sizes import (
     size_word_sim,
 )
 from inherit_sg.retrieval.snapshot import MapSnapshot
+from inherit_sg.retrieval.viewer import KeyframeViews, View, ViewerPose, ViewFinder
 
+# Distance to a landmark, as "closest" measures it (ordinals counted from a landmark).
+_AS_CLOSEST = Superlative(measure="closest")
 # A label / function similarity at least this strong means "is what was named" (exact,
 # a kind of it, a likely function kind), not merely "resembles it".
 STRONG_MATCH = 0.5
@@ -55,6 +74,11 @@ STRONG_MATCH = 0.5
 SUPERLATIVE_TIER = 0.05
 # Superlatives measured on an object's box (compared only between well-observed boxes).
 BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest"})
+# Ordinals and "the middle one": the chosen candidate scores 1, the others this much
+# over (1 + their rank distance); of an even tier's two central ones, the one farther
+# from the viewer scores MIDDLE_RUNNER_UP.
+ORDINAL_FALLOFF = 0.5
+MIDDLE_RUNNER_UP = 0.9
 _WORD = re.compile(r"[a-z]+")
 
 
@@ -140,6 +164,11 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     node = snap.node(node_id)
     value = con.value.lower()
     text = ""
+    if con.key == "part":
+        attrs = node.attributes if isinstance(node, ObjectNode) else {}
+        desc = node.description if isinstance(node, ObjectNode) else getattr(node, "summary", "")
+        sim, why = part_sim(value, desc, attrs)
+        return (UNKNOWN_SIM if sim is None else sim), why
     if isinstance(node, ObjectNode):
         have = node.attributes.get(con.key)
         if isinstance(have, str) and have and have.lower() != "unknown":
@@ -163,25 +192,73 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     return 0.0, f"no {con.key} '{value}' known"
 
 
-class Scorer:
-    """Scores candidates of a spec against a snapshot."""
+class _Viewing:
+    """The views of one scoring of a spec, with a trace line per use."""
 
-    def __init__(self, snap: MapSnapshot, checker: GraphChecker) -> None:
+    def __init__(self, finder: ViewFinder, spec_key: str, notes: list[str]) -> None:
+        self.finder = finder
+        self.spec_key = spec_key
+        self.notes = notes
+        self._said: set[tuple[str, str]] = set()
+
+    def view(self, group: list[str], cid: str) -> View | None:
+        """The view for ranking ``group`` for constraint ``cid`` (traced once)."""
+        found = self.finder.view(group)
+        if found is not None and (found.why, cid) not in self._said:
+            self._said.add((found.why, cid))
+            self.notes.append(f"viewer: {found.why} (for {self.spec_key} {cid})")
+        return found
+
+
+class Scorer:
+    """Scores candidates of a spec against a snapshot.
+
+    ``robot`` is the viewer's pose sent with the request, ``keyframes`` the SEEN_IN
+    index and keyframe poses of the snapshot (the viewer "as the robot saw them"), and
+    ``placement`` the snapshot's room fields; each is optional (a scorer without
+    ``keyframes`` skips that source; ``placement`` is made on first use)."""
+
+    def __init__(
+        self,
+        snap: MapSnapshot,
+        checker: GraphChecker,
+        *,
+        robot: ViewerPose | None = None,
+        keyframes: KeyframeViews | None = None,
+        placement: PlacementMeter | None = None,
+    ) -> None:
         self.snap = snap
         self.checker = checker
+        self.robot = robot
+        self.keyframes = keyframes
+        self._placement = placement
+
+    @property
+    def placement(self) -> PlacementMeter:
+        """The placement meter (made on first use when none was given)."""
+        if self._placement is None:
+            self._placement = PlacementMeter(self.snap)
+        return self._placement
 
     def score(
         self, spec: NodeSpec, cands: Candidates, landmarks: dict[str, Landmarks]
     ) -> tuple[list[Scored], list[str]]:
         """Ranked candidates of ``spec`` and notes for the trace."""
         notes: list[str] = []
+        finder = ViewFinder(
+            self.snap,
+            viewpoint=spec.viewpoint,
+            viewpoint_marks=landmarks.get(VIEWPOINT, ()) if spec.viewpoint is not None else (),
+            robot=self.robot,
+            keyframes=self.keyframes,
+        )
+        viewing = _Viewing(finder, spec.key, notes)
         out = [Scored(i, found_by=how) for i, how in cands.found_by.items()]
-        spatial = self._relations(spec, [c.id for c in out], landmarks)
         scored = [c for c in spec.scored() if not isinstance(c, Superlative)]
         for cand in out:
             for con in scored:
-                if con.id in spatial:
-                    sim, why = spatial[con.id].get(cand.id, (0.0, ""))
+                if isinstance(con, RelationConstraint):
+                    sim, why = 0.0, ""
                 else:
                     sim, why = self._sim(spec, con, cand.id, cands)
                 cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, sim, why)
@@ -189,13 +266,30 @@ class Scorer:
                 sim = cands.visual_sim.get(cand.id, 0.0)
                 why = f"appearance similarity {sim:.2f}"
                 cand.terms[IMAGE_TERM] = Term(IMAGE_TERM, "visual", IMAGE_WEIGHT, 1, sim, why)
+        spatial = self._relations(spec, out, landmarks, viewing)
+        for cand in out:
+            for cid, found in spatial.items():
+                term = cand.terms[cid]
+                term.sim, term.why = found.get(cand.id, (0.0, ""))
         self._heights(spec, out)
         self._floor(spec, out, notes)
         for sup in spec.scored():
             if isinstance(sup, Superlative):
-                self._superlative(sup, out, landmarks.get(sup.id, ()), notes)
+                self._superlative(sup, out, landmarks.get(sup.id, ()), notes, viewing)
         out.sort(key=_rank_key)
         return out, notes
+
+    def _leading(self, spec: NodeSpec, out: list[Scored]) -> list[str]:
+        """The candidates that lead on everything but relations (on the allowed floors
+        when any is there): the group a viewer-relative relation is seen for."""
+        live = out
+        if spec.levels is not None:
+            live = [c for c in out if self.snap.level_of(c.id) in spec.levels] or out
+        partial = {c.id: sum(t.value for t in c.terms.values()) for c in live}
+        if not partial:
+            return []
+        best = max(partial.values())
+        return [i for i, v in partial.items() if v >= best - SUPERLATIVE_TIER]
 
     # ------------------------------------------------------------- per kind
     def _sim(
@@ -225,23 +319,39 @@ class Scorer:
             return 0.0, f"in {place} ({node.label if node is not None else '?'})"
         if isinstance(con, AttributeConstraint):
             return attribute_sim(snap, node_id, con)
+        if isinstance(con, PlacementConstraint):
+            measured, why = self.placement.sim(node_id, con.where)
+            return (UNKNOWN_SIM if measured is None else measured), why
         return 0.0, f"{con.kind} is not scored"
 
     def _relations(
-        self, spec: NodeSpec, ids: list[str], landmarks: dict[str, Landmarks]
+        self,
+        spec: NodeSpec,
+        out: list[Scored],
+        landmarks: dict[str, Landmarks],
+        viewing: _Viewing,
     ) -> dict[str, dict[str, tuple[float, str]]]:
-        """GraphRAG checks of every relation constraint for all candidates at once."""
-        out: dict[str, dict[str, tuple[float, str]]] = {}
+        """GraphRAG checks of every relation constraint for all candidates at once;
+        viewer-relative predicates are decided geometrically when a viewer can be
+        formed (else approximated by 'near', as the checker does)."""
+        ids = [c.id for c in out]
+        found: dict[str, dict[str, tuple[float, str]]] = {}
         for con in spec.scored():
             if not isinstance(con, RelationConstraint):
                 continue
             first = landmarks.get(con.id, ())
             if con.predicate == "between":
                 second = landmarks.get(f"{con.id}/2", ())
-                out[con.id] = self.checker.between_all(ids, first, second)
+                found[con.id] = self.checker.between_all(ids, first, second)
+                continue
+            view = None
+            if con.predicate in VIEW_PREDICATES and spec.layer == "object":
+                view = viewing.view(self._leading(spec, out), con.id)
+            if view is not None:
+                found[con.id] = directional_all(self.snap, view, ids, con.predicate, first)
             else:
-                out[con.id] = self.checker.relation_all(ids, con.predicate, first)
-        return out
+                found[con.id] = self.checker.relation_all(ids, con.predicate, first)
+        return found
 
     def _heights(self, spec: NodeSpec, out: list[Scored]) -> None:
         """Height words without a stated height: rank candidates by box height."""
@@ -291,7 +401,13 @@ class Scorer:
         )
 
     # ---------------------------------------------------------- superlative
-    def _measure(self, con: Superlative, node_id: str, landmarks: Landmarks) -> float | None:
+    def _measure(
+        self,
+        con: Superlative,
+        node_id: str,
+        landmarks: Landmarks,
+        viewer: tuple[float, float] | None = None,
+    ) -> float | None:
         node = self.snap.node(node_id)
         if con.measure in ("largest", "smallest"):
             if isinstance(node, ObjectNode):
@@ -309,6 +425,9 @@ class Scorer:
                 if lid != node_id and here is not None and (there := self.snap.position(lid))
             ]
             return min(dists) if dists else None
+        if con.measure in ("closest", "farthest") and viewer is not None:
+            here = self.snap.position(node_id)
+            return math.dist(here[:2], viewer) if here is not None else None
         return None
 
     def _measured_boxes(self, con: Superlative, tier: list[Scored]) -> list[Scored]:
@@ -327,7 +446,12 @@ class Scorer:
         return kept
 
     def _superlative(
-        self, con: Superlative, out: list[Scored], landmarks: Landmarks, notes: list[str]
+        self,
+        con: Superlative,
+        out: list[Scored],
+        landmarks: Landmarks,
+        notes: list[str],
+        viewing: _Viewing,
     ) -> None:
         for cand in out:
             cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, 0.0, "")
@@ -336,9 +460,16 @@ class Scorer:
             return
         best = max(c.score for c in live)
         tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
+        if con.measure in ("ordinal", "middle"):
+            self._by_position(con, tier, landmarks, notes, viewing)
+            return
         if con.measure in BOX_MEASURES:
             tier = self._measured_boxes(con, tier)
-        values = {c.id: self._measure(con, c.id, landmarks) for c in tier}
+        viewer = None
+        if con.measure in ("closest", "farthest") and con.landmark is None:
+            view = viewing.view([c.id for c in tier], con.id)
+            viewer = view.position if view is not None else None
+        values = {c.id: self._measure(con, c.id, landmarks, viewer) for c in tier}
         known = {k: v for k, v in values.items() if v is not None}
         if not known:
             notes.append(f"{con.id}: cannot rank by '{con.measure}' here (no measure known)")
@@ -352,6 +483,45 @@ class Scorer:
             ratio = (v / top if top > 0 else 1.0) if want_max else (top / v if v > 0 else 1.0)
             cand.terms[con.id].sim = float(min(1.0, ratio)) if v != top else 1.0
             cand.terms[con.id].why = f"{con.measure}: {v:.3g} (best {top:.3g})"
+
+    def _by_position(
+        self,
+        con: Superlative,
+        tier: list[Scored],
+        landmarks: Landmarks,
+        notes: list[str],
+        viewing: _Viewing,
+    ) -> None:
+        """Ordinals and "the middle one": order the tier as the viewer sees it."""
+        placed = [(c, p) for c in tier if (p := self.snap.position(c.id)) is not None]
+        view = viewing.view([c.id for c, _ in placed], con.id) if placed else None
+        if view is None:
+            notes.append(f"{con.id}: cannot order the candidates (no position known)")
+            return
+        ids = [c.id for c, _ in placed]
+        xy = np.array([p[:2] for _, p in placed], dtype=float).reshape(-1, 2)
+        landmark_dist = None
+        if con.landmark is not None and con.direction is None:
+            if not landmarks:
+                notes.append(f"{con.id}: no landmark to count from; counting from the viewer")
+            else:
+                landmark_dist = np.array(
+                    [self._measure(_AS_CLOSEST, i, landmarks) or math.inf for i in ids]
+                )
+        ranked = place(
+            con,
+            ids,
+            xy,
+            view,
+            landmark_dist=landmark_dist,
+            falloff=ORDINAL_FALLOFF,
+            runner_up=MIDDLE_RUNNER_UP,
+        )
+        if ranked.note:
+            notes.append(ranked.note)
+        for (cand, _), sim, why in zip(placed, ranked.sims, ranked.whys, strict=True):
+            cand.terms[con.id].sim = sim
+            cand.terms[con.id].why = why
 
 
 def landmark_quality(spec: NodeSpec, ranked: list[Scored], limit: int = 50) -> Landmarks:

@@ -25,9 +25,10 @@ from inherit_sg.model import (
     RoomNode,
     SceneGraph,
 )
-from inherit_sg.retrieval.rules.tagger import canonical_noun, room_type
+from inherit_sg.retrieval.labels import map_label_kinds
 from inherit_sg.retrieval.sizes import kind_sizes
 from inherit_sg.store import MapStore
+from inherit_sg.vocab.rooms import room_type
 
 Version = tuple[int, ...]
 _VERSION_FILES = ("graph.kuzu", "graph.kuzu.wal", "map.json")
@@ -49,9 +50,8 @@ def map_version(path: Path) -> Version:
 
 
 def canonical_labels(label: str) -> tuple[str, ...]:
-    """Canonical lexicon labels of a map label ("couch" → ``("sofa",)``)."""
-    text = label.strip().lower()
-    return canonical_noun(text) if text else ()
+    """Canonical vocabulary labels of a map label ("couch" → ``("sofa",)``)."""
+    return map_label_kinds(label)
 
 
 @dataclass

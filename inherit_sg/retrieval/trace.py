@@ -20,6 +20,11 @@ def describe_query(parsed: ParsedQuery) -> list[str]:
     for con, depth in parsed.walk():
         pad = "  " * depth
         lines.append(f"{pad}{con.id}: {describe(con)} (w={con.weight:.2f}, p={con.polarity:+d})")
+    if parsed.viewpoint is not None:
+        vp = parsed.viewpoint
+        lines.append(f"viewpoint: {vp.kind.replace('_', ' ')} {vp.landmark.target.describe()}")
+        for con in vp.landmark.constraints:
+            lines.append(f"  {con.id}: {describe(con)} (w={con.weight:.2f}, p={con.polarity:+d})")
     if parsed.reference != "none":
         lines.append(f"follow-up: {parsed.reference}")
     if parsed.exclude_ids:

@@ -2,15 +2,23 @@
 
 A map is a directory holding ``map.json``, ``graph.kuzu`` (+ its ``.wal``; the scene
 graph), ``index.kuzu`` (+ ``.wal``; vector and full-text indexes derived from the graph),
-``lance/`` (keyframes) and ``map.lock``. ``map.json`` is written last when a map is created, so its presence is
-what makes a directory a map; it is always replaced atomically (write, fsync, rename).
+``lance/`` (keyframes) and ``map.lock``. ``map.json`` is written last when a map is
+created, so its presence is what makes a directory a map; it is always replaced
+atomically (write, fsync, rename).
+
+``map.json`` also records the vocabulary the map was built with (the versions and digest
+of :func:`inherit_sg.vocab.vocabulary_info`) and its label space, the distinct object
+labels its mapping sessions produced (:func:`record_session_vocabulary`).
 """
 
 from __future__ import annotations
 
+import copy
 import json
+import logging
 import os
 import tempfile
+from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -19,6 +27,7 @@ from typing import Any
 from inherit_sg import __version__
 from inherit_sg.config import Config
 from inherit_sg.errors import MapCorruptError, MapNotFoundError
+from inherit_sg.vocab import vocabulary_info
 
 MAP_JSON = "map.json"
 GRAPH_FILE = "graph.kuzu"
@@ -27,10 +36,15 @@ LANCE_DIR = "lance"
 LOCK_FILE = "map.lock"
 MAP_FORMAT = "inherit-sg-map"
 
+log = logging.getLogger(__name__)
+
 
 @dataclass
 class MapInfo:
-    """Mirror of ``map.json``: what fixes the map's shape, plus its session list."""
+    """Mirror of ``map.json``: what fixes the map's shape, plus its session list, the
+    vocabulary it was last mapped with (``{"versions": {file: version}, "digest": …}``;
+    empty for maps made before it was recorded) and its label space (sorted distinct
+    object labels of its mapping sessions)."""
 
     schema_version: int
     text_embedder: str
@@ -42,6 +56,8 @@ class MapInfo:
     inherit_sg_version: str = __version__
     sessions: list[dict[str, Any]] = field(default_factory=list)
     format: str = MAP_FORMAT
+    vocabulary: dict[str, Any] = field(default_factory=dict)
+    label_space: list[str] = field(default_factory=list)
 
     @classmethod
     def from_config(cls, config: Config, schema_version: int) -> MapInfo:
@@ -53,6 +69,7 @@ class MapInfo:
             visual_encoder=config.perception.visual_encoder,
             visual_dim=config.store.visual_dim,
             image_feature_dim=config.store.image_feature_dim,
+            vocabulary=copy.deepcopy(vocabulary_info()),
         )
 
     @property
@@ -74,6 +91,11 @@ class MapInfo:
         if data.get("format", MAP_FORMAT) != MAP_FORMAT:
             raise MapCorruptError(f"{where}: not an INHerit-SG map (format {data.get('format')!r})")
         known = set(cls.__dataclass_fields__)
+        if not isinstance(data.get("vocabulary", {}), dict):
+            raise MapCorruptError(f"{where}: 'vocabulary' must be an object")
+        labels = data.get("label_space", [])
+        if not isinstance(labels, list) or not all(isinstance(x, str) for x in labels):
+            raise MapCorruptError(f"{where}: 'label_space' must be a list of strings")
         try:
             return cls(**{k: v for k, v in data.items() if k in known})
         except TypeError as exc:
@@ -119,6 +141,38 @@ def write_map_info(path: Path, info: MapInfo) -> None:
         os.fsync(dir_fd)
     finally:
         os.close(dir_fd)
+
+
+def _describe(vocabulary: dict[str, Any]) -> str:
+    versions = vocabulary.get("versions") or {}
+    listed = ", ".join(f"{name} v{v}" for name, v in versions.items())
+    return f"{vocabulary.get('digest')} ({listed})" if listed else str(vocabulary.get("digest"))
+
+
+def record_session_vocabulary(path: Path, info: MapInfo, labels: Iterable[str]) -> None:
+    """After a mapping session of the map at ``path``: add the session's object
+    ``labels`` to ``info.label_space`` (sorted union with what was there) and record the
+    vocabulary the session ran with, then rewrite ``map.json`` when either changed.
+
+    When the recorded vocabulary digest differs from the current one, the map stays
+    usable: the new vocabulary is recorded and a warning names both (labels from either
+    vocabulary stay in the map and in its label space)."""
+    current = copy.deepcopy(vocabulary_info())
+    recorded = info.vocabulary.get("digest")
+    if recorded and recorded != current["digest"]:
+        log.warning(
+            "map %s was mapped with vocabulary %s; this session used vocabulary %s: "
+            "recording the new one (labels from both stay in the map)",
+            path,
+            _describe(info.vocabulary),
+            _describe(current),
+        )
+    label_space = sorted(set(info.label_space) | {lab for lab in labels if lab})
+    if info.vocabulary == current and info.label_space == label_space:
+        return
+    info.vocabulary = current
+    info.label_space = label_space
+    write_map_info(path, info)
 
 
 def dir_bytes(path: Path) -> int:

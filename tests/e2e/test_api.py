@@ -125,6 +125,43 @@ def test_query_and_errors(client: TestClient) -> None:
     assert client.post("/v1/maps/nope/query", json={"text": "a chair"}).status_code == 404
 
 
+def test_query_with_the_robots_pose(client: TestClient) -> None:
+    label = cypher(client, "MATCH (o:Object) RETURN o.label ORDER BY o.id LIMIT 1")["rows"][0][0]
+    url = f"/v1/maps/{NAME}/query"
+    viewer = {"position": [1.0, 2.0, 0.0], "yaw_deg": 90}
+    resp = client.post(url, json={"text": f"the {label}", "viewer": viewer})
+    assert resp.status_code == 200, resp.text
+    assert "robot pose given: (1.00, 2.00, 0.00), heading 90°" in resp.json()["trace"]
+    assert client.post(url, json={"text": f"the {label}", "viewer": None}).status_code == 200
+
+
+@pytest.mark.parametrize(
+    ("viewer", "field"),
+    [
+        ({"position": [1.0, 2.0, 0.0], "yaw_deg": "x"}, "viewer.yaw_deg"),
+        ({"position": [1.0, 2.0], "yaw_deg": 0}, "viewer.position"),
+        ({"position": [1.0, 2.0, 3.0, 4.0], "yaw_deg": 0}, "viewer.position"),
+        ({"position": [1.0, "a", 0.0], "yaw_deg": 0}, "viewer.position.1"),
+        ({"position": [1.0, 2.0, 1e9], "yaw_deg": 0}, "viewer.position.2"),
+        ({"position": [1.0, 2.0, 0.0]}, "viewer.yaw_deg"),
+        ({"position": [1.0, 2.0, 0.0], "yaw_deg": 0, "pitch": 3}, "viewer.pitch"),
+        ("1,2,0,90", "viewer"),
+    ],
+)
+def test_query_viewer_is_validated(client: TestClient, viewer: object, field: str) -> None:
+    resp = client.post(f"/v1/maps/{NAME}/query", json={"text": "a chair", "viewer": viewer})
+    assert resp.status_code == 400, resp.text
+    body = resp.json()
+    assert body["error"] == "bad_input" and f"body.{field}" in body["message"]
+
+
+def test_query_viewer_is_documented(client: TestClient) -> None:
+    schemas = client.get("/openapi.json").json()["components"]["schemas"]
+    viewer = schemas["QueryRequest"]["properties"]["viewer"]
+    assert "robot's pose" in viewer["description"]
+    assert schemas["ViewerIn"]["properties"]["position"]["minItems"] == 3
+
+
 def test_conversation_follow_up(client: TestClient) -> None:
     rows = cypher(
         client,

@@ -80,7 +80,7 @@ def test_conversation_file(map_dir: Path, tmp_path: Path) -> None:
     ("args", "message"),
     [
         (["   "], "empty"),
-        (["x" * 5000], "long"),
+        (["x" * 5001], "long"),
         ([], "either a request TEXT or --batch"),
         (["--batch", "in.jsonl"], "--batch needs --out"),
     ],
@@ -110,3 +110,36 @@ def test_query_with_an_image(map_dir: Path, tmp_path: Path) -> None:
     assert data["candidates"][0]["scores"]["image"]["kind"] == "visual"
     code, out = run("--map", str(map_dir), "a mug", "--image", str(tmp_path / "none.png"))
     assert code == 2 and "not found or not an image" in out
+
+
+def test_query_with_the_robots_pose(map_dir: Path) -> None:
+    code, out = run("--map", str(map_dir), "the sofa", "--json", "--viewer=7.5,-1,0,90")
+    assert code == 0, out
+    trace = json.loads(out)["trace"]
+    assert "robot pose given: (7.50, -1.00, 0.00), heading 90°" in trace
+
+
+@pytest.mark.parametrize("value", ["1,2", "a,b,c,d", "1,2,3,inf"])
+def test_bad_viewer_is_a_clear_error(map_dir: Path, value: str) -> None:
+    code, out = run("--map", str(map_dir), "the sofa", f"--viewer={value}")
+    assert code == 2
+    assert "viewer" in out and "error" in out
+
+
+def test_batch_lines_may_carry_a_viewer(map_dir: Path, tmp_path: Path) -> None:
+    src = tmp_path / "in.jsonl"
+    lines = [
+        {"id": "own", "text": "the sofa", "viewer": {"position": [1, 2, 0], "yaw_deg": 180}},
+        {"id": "bad", "text": "the sofa", "viewer": {"position": [1, 2]}},
+        {"id": "default", "text": "the sofa"},
+    ]
+    src.write_text("\n".join(json.dumps(x) for x in lines) + "\n")
+    dst = tmp_path / "out.jsonl"
+    args = ["--map", str(map_dir), "--batch", str(src), "--out", str(dst), "--json"]
+    code, out = run(*args, "--viewer=0,0,0,45")
+    assert code == 0, out
+    assert json.loads(out) == {"requests": 3, "answered": 2, "no_answer": 0, "errors": 1}
+    rows = {r["id"]: r for r in map(json.loads, dst.read_text().splitlines())}
+    assert "robot pose given: (1.00, 2.00, 0.00), heading 180°" in rows["own"]["trace"]
+    assert "viewer must be an object" in rows["bad"]["error"]["message"]
+    assert "robot pose given: (0.00, 0.00, 0.00), heading 45°" in rows["default"]["trace"]

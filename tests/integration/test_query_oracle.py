@@ -19,6 +19,7 @@ from inherit_sg.model import BBox3D, Edge, EdgeKind, ObjectNode
 from inherit_sg.retrieval.baseline import FlatBaseline
 from inherit_sg.retrieval.conversation import Conversation
 from inherit_sg.retrieval.engine import QueryEngine
+from inherit_sg.retrieval.rules import MAX_QUERY_CHARS
 from inherit_sg.store import MapStore
 from tests.unit.retrieval_fixtures import give_best_view, write_small_map
 
@@ -95,7 +96,7 @@ def test_bad_and_global_requests(engine: QueryEngine) -> None:
     with pytest.raises(QueryTextError):
         engine.query("   ")
     with pytest.raises(QueryTextError):
-        engine.query("x" * 5000)
+        engine.query("x" * (MAX_QUERY_CHARS + 1))
     result = engine.query("How does this space encourage socialising?")
     assert result.answer is None and result.candidates == []
     assert result.trace[-1].startswith("no answer:")

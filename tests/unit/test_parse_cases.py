@@ -97,6 +97,9 @@ def check(parsed: ParsedQuery, exp: dict[str, Any]) -> None:
     if "areas" in exp:
         areas = [[c.label, c.negated] for c in cons if c.kind == "area"]  # type: ignore[union-attr]
         assert areas == exp["areas"]
+    if "placements" in exp:
+        found = [[c.where, c.negated] for c in cons if c.kind == "placement"]  # type: ignore[union-attr]
+        assert found == exp["placements"]
     if "floors" in exp:
         floors = [
             [c.level if c.level is not None else c.relative, c.negated]

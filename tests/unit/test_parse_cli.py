@@ -9,6 +9,7 @@ import typer
 from typer.testing import CliRunner
 
 from inherit_sg.cli.parse_cmd import app, parse
+from inherit_sg.retrieval.rules import MAX_QUERY_CHARS
 
 runner = CliRunner()
 
@@ -59,9 +60,9 @@ def test_bad_text_exits_2_with_a_clear_message() -> None:
     empty = runner.invoke(app, ["   ", "--json"])
     assert empty.exit_code == 2
     assert json.loads(empty.output) == {"error": "bad_query", "message": "query text is empty"}
-    long = runner.invoke(app, ["x" * 1001])
+    long = runner.invoke(app, ["x" * (MAX_QUERY_CHARS + 1)])
     assert long.exit_code == 2
-    assert "limit is 1000" in long.output
+    assert f"limit is {MAX_QUERY_CHARS}" in long.output
     binary = runner.invoke(app, ["\x07\x08"])
     assert binary.exit_code == 2
 

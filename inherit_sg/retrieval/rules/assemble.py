@@ -94,6 +94,7 @@ def assemble(
             reference=reference,
             no_target_reason=None if reference != "none" else NO_TARGET,
             notes=tuple(notes),
+            viewpoint=clause.viewpoint,
         )
     own = clause.pending + head.constraints
     functions = [c for c in clause.functions + own if isinstance(c, FunctionConstraint)]
@@ -102,7 +103,7 @@ def assemble(
         functions = list(_guess_function(words, notes))
     elif not functions and head.kind == OBJECT and not head.known and head.words:
         # an unknown head that is a purpose noun: "I want a long soak" seeks a bathtub
-        functions = list(_guess_function(head.words, notes))
+        functions = list(_guess_function(head.words[-1:], notes))
         if functions:
             head.kind, head.labels = GENERIC, []
             own = [c for c in own if c.kind != "attribute"]
@@ -128,4 +129,5 @@ def assemble(
         constraints=number_constraints(tuple(constraints)),
         reference=reference,
         notes=tuple(notes),
+        viewpoint=clause.viewpoint,
     )

@@ -14,9 +14,14 @@ from inherit_sg.retrieval.constraints import (
     AreaConstraint,
     Constraint,
     LabelConstraint,
+    Landmark,
+    RelationConstraint,
     RoomConstraint,
+    Target,
+    Viewpoint,
 )
 from inherit_sg.retrieval.rules import verbs
+from inherit_sg.retrieval.rules.grammar import VIEW_OPENERS as _VIEW_OPENERS
 from inherit_sg.retrieval.rules.grammar import Grammar
 from inherit_sg.retrieval.rules.phrase import (
     ANAPHOR,
@@ -31,12 +36,24 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.tagger import Tok
+from inherit_sg.vocab.lexicon import lexicon
 
 _SKIP = (
     "filler", "wh", "modal", "seeker", "comma", "and", "or", "but", "adv", "than", "overb",
     "be", "rel", "of", "to", "from", "dir", "for", "while", "have", "fverb", "shade", "sub",
-    "like",
+    "like", "seek",
 )  # fmt: skip
+# Subjects of a frame that introduces the target: "this is a bed", "it's the lamp", "there
+# are two chairs", "these are the pillows".
+_FRAME_SUBJECTS = frozenset({"this", "that", "it", "these", "those", "they", "there", "here"})
+# Particles and prepositions after a request verb that lead to its object ("walk over to").
+# Particles between a viewpoint verb and its landmark ("come down the stairs").
+_PARTICLES = frozenset({
+    "down", "up", "in", "into", "through", "out", "from", "of", "to", "toward", "towards",
+    "at", "by", "past", "along", "across", "around", "over", "onto", "inside",
+})  # fmt: skip
+_SWITCH_VERBS = frozenset({"turn", "switch", "shut", "power", "flip", "flick"})
+_TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
 @dataclass
@@ -50,29 +67,93 @@ class Clause:
     excluded_labels: list[Constraint] = field(default_factory=list)
     exclude_previous: bool = False
     floor_np: NP | None = None
+    head_negated: bool = False  # "not the sofa …": replaced by a positive phrase that follows
+    viewpoint: Viewpoint | None = None
+
+
+def view_opener(g: Grammar) -> bool:
+    """Whether a viewpoint clause opens here: "if you …", "as you walk in …"."""
+    tok = g.peek()
+    if tok is None or tok.text.split()[0] not in _VIEW_OPENERS:
+        return False
+    return tok.has("view") or g.at("seeker", k=1)
+
+
+def _contrast(prev: Tok | None) -> bool:
+    """Whether a phrase after ``prev`` can stand for the one a negated phrase ruled out
+    ("not the sofa but the armchair", "not the sofa, the armchair"; not "… for the dog")."""
+    return (
+        prev is None
+        or prev.has("but", "comma", "and", "seek", "filler", "be", "overb", "fverb")
+        or (prev.text in ("instead", "rather"))
+    )
+
+
+def _related(head: NP, other: NP) -> bool:
+    """Whether two phrases name related kinds (the same, one a kind of the other, or
+    kinds under one general word): "a seat, except the stool"."""
+    from inherit_sg.vocab import objects as object_vocab
+
+    a, b = set(head.labels), set(other.labels)
+    if a & b or not a:
+        return True
+    for x in a:
+        for y in b:
+            if object_vocab.is_kind_of(x, y) or object_vocab.is_kind_of(y, x):
+                return True
+            if set(object_vocab.is_a(x)) & set(object_vocab.is_a(y)) - {
+                "furniture",
+                "object",
+                "thing",
+            }:
+                return True
+    return False
 
 
 class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
-    def parse(self, refine: bool = False) -> Clause:
-        """Walk the tokens once, building the clause."""
-        out = Clause()
+    view_end = -1  # token index just after a viewpoint clause
+    more_sentences = False  # sentences follow this one (set by the request parser)
+    _after_except = False  # the last negation was "except" / "apart from"
+
+    def parse(self, refine: bool = False, out: Clause | None = None) -> Clause:
+        """Walk the tokens once, building the clause (continuing ``out`` when given)."""
+        out = out if out is not None else Clause()
         while (tok := self.peek()) is not None:
-            if verbs.is_verb_here(self):
+            opener = view_opener(self)
+            if (opener or self._clause_start()) and self._viewpoint(out):
+                continue  # "… the left one if you're facing the headboard"
+            if self._clause_start() and self._frame():
+                continue
+            if tok.has("seek") and not verbs.is_verb_here(self):
+                self._request_verb()
+            elif verbs.is_verb_here(self):
                 made, candidate = verbs.parse_vp(self)
                 out.functions += [c for c in made if c.kind == "function"]
                 self._route(out, [c for c in made if c.kind != "function"])
-                if candidate is not None and out.head is None:
-                    out.head = candidate
+                if candidate is not None:
                     out.places += candidate.places
+                    candidate.places = []
+                    if candidate.excluded and out.head is not None:
+                        self._exclude(out, candidate)
+                    elif out.head is None:
+                        out.head = candidate
+                        out.head_negated = candidate.excluded
+                    elif not self._replaces_head(out, candidate, False):
+                        self._second_phrase(out, candidate, False, False)
             elif tok.has("seeker") and self.at("modal", "wh", k=-1):
                 self.advance()  # "where would one go"
             elif tok.has("for", "while"):
                 self._purpose(out)
+            elif tok.has("but") and self.at("det", k=1) and self.at("one", k=2) and out.head:
+                self.advance()  # "any throw but the one on the couch"
+                self.negate()
+                self._after_except = True
             elif tok.has("neg", "except"):
                 self.advance()
                 self.negate()
+                self._after_except = tok.has("except")
             elif tok.has("emph", "hedge"):
                 self.advance()
                 self.stress("emph" if tok.has("emph") else "hedge")
@@ -91,6 +172,191 @@ class ClauseParser(Grammar):
                     self.notes.append(f"skipped {tok.text!r}")
                 self.advance()
         return out
+
+    # ------------------------------------------------------------ clause frames
+    def _clause_start(self) -> bool:
+        if self.i == self.view_end:
+            return True  # "facing the closet doors it is the hamper …"
+        j = self.i - 1
+        while j >= 0 and self.toks[j].has("filler") and not self.toks[j].has("view"):
+            j -= 1  # "okay so if you look at …": filler words open nothing
+        prev = self.toks[j] if j >= 0 else None
+        return prev is None or prev.has("comma", "and", "but", "sub") or prev.text == "then"
+
+    def _frame(self) -> bool:
+        """Skip "this is" / "it's" / "there are" / "the object is" before the phrase that
+        names the target (a pronoun subject would otherwise be read as "it")."""
+        tok = self.peek()
+        assert tok is not None
+        k = 1
+        if tok.has("det") and self.at("generic", k=1) and self.text_at(1) in lexicon().meta_nouns:
+            k = 2  # "the object is a …", "the item is …"
+        elif tok.text not in _FRAME_SUBJECTS:
+            return False
+        if not self.at("be", k=k):
+            return False
+        j = k + 1
+        while self.at("adv", "emph", "hedge", "neg", k=j) and not self.at("prep", k=j):
+            j += 1
+        if not self.np_start(j) or (self.at("anaphor", k=j) and not self.at("det", k=j)):
+            return False
+        words = " ".join(t.text for t in self.toks[self.i : self.i + k + 1])
+        self.notes.append(f"frame: '{words}' introduces the target")
+        self.i += k + 1  # "not" stays: "it's not the white cabinet, it's the brown one"
+        return True
+
+    def _request_verb(self) -> None:
+        """An imperative that asks to find or act on something ("select", "identify",
+        "walk over to", "choose"): its object is the target."""
+        tok = self.advance()
+        self.notes.append(f"request verb {tok.text!r}: its object is the target")
+        if tok.lemma in _SWITCH_VERBS and self.text_at() in ("on", "off"):
+            self.advance()  # "turn on the lamp"
+        while (nxt := self.peek()) is not None and (nxt.text in _TOWARDS or nxt.tag == "RP"):
+            if nxt.has("prep") and nxt.text not in ("to", "towards", "toward", "at", "over to"):
+                break
+            self.advance()
+
+    def _viewpoint(self, out: Clause) -> bool:
+        """A clause that says where the speaker stands or looks: "if you face the
+        windows", "from the door", "as you come through the brown door", "when you come down
+        the stairs", "with your back to the TV". Its landmark becomes the request's
+        viewpoint; nothing else is taken from it."""
+        lx = lexicon()
+        k, opener = 0, False
+        if self.text_at() in _VIEW_OPENERS:
+            k, opener = 1, True
+        while self.at("seeker", "be", "modal", "adv", k=k) and k < 5 and not self._view_verb(k):
+            k += 1
+        lead = self.peek(k)
+        if lead is not None and lead.lemma in lx.viewpoint_verbs and self.at("view", k=k + 1):
+            k += 1  # "stand with your back to the door"
+        cue = self.peek(k)
+        if cue is None:
+            return False
+        # a participle or an imperative opens a viewpoint too: "Looking from the hallway
+        # …", "Face the oven and …"
+        verb_ok = opener or k > 0 or cue.tag in ("VBG", "VB")
+        if cue.has("view"):
+            kind = str(cue.tags["view"])
+        elif verb_ok and cue.lemma in lx.facing_verbs:
+            kind = "facing"
+        elif verb_ok and cue.lemma in lx.viewpoint_verbs and cue.pos in ("VERB", "AUX"):
+            kind = "from"
+        else:
+            return False
+        if cue.text == "from" and not self._from_clause(k):
+            return False
+        snap = self.state()
+        self.i += k + 1
+        while (tok := self.peek()) is not None and (
+            tok.has("prep", "to", "from") or tok.tag == "RP" or tok.text in _PARTICLES
+        ):
+            if tok.text in ("to", "toward", "towards") and kind == "from":
+                kind = "facing"  # "as you walk towards the window"
+            self.advance()  # "as you come in through the door", "stand at the sink"
+            if self.np_start():
+                break
+        lm = self.parse_np(landmark=True) if self.np_start() else None
+        if lm is not None and lm.kind == VAGUE:
+            lm = self._position_landmark(lm)  # "from the top of the stairs"
+        if lm is not None and lm.kind not in (OBJECT, ROOM):
+            self.restore(snap)
+            return False
+        if lm is None and kind != "from":
+            self.restore(snap)
+            return False
+        if lm is None and opener and not cue.has("view"):
+            self._skip_clause()  # "if you stand where the rug ends, …": context only
+            return True
+        if kind == "facing" and self.at("from") and self.np_start(1):
+            here = self.state()
+            self.advance()
+            origin = self.parse_np(landmark=True)  # "looking at the bed from the door"
+            if origin is not None and origin.kind == OBJECT:
+                kind, lm = "from", origin
+            else:
+                self.restore(here)
+        self._second_view()  # "standing at the printer looking toward the windows"
+        opener = opener or cue.text.split()[0] in _VIEW_OPENERS
+        if lm is not None and not opener and not self._more_follows():
+            self.restore(snap)  # "look at the clock on the wall": the clock is sought
+            return False
+        landmark = self._viewpoint_landmark(lm)
+        out.viewpoint = Viewpoint(
+            kind=kind, landmark=landmark, text=" ".join(t.text for t in self.toks[snap[0] : self.i])
+        )
+        self.notes.append(f"viewpoint: {kind} {landmark.target.describe()}")
+        if self.at("comma"):
+            self.advance()
+        self.view_end = self.i
+        return True
+
+    def _view_verb(self, k: int) -> bool:
+        tok = self.peek(k)
+        lx = lexicon()
+        return tok is not None and (tok.lemma in lx.viewpoint_verbs or tok.lemma in lx.facing_verbs)
+
+    def _second_view(self) -> None:
+        """A second viewpoint phrase after the first ("… looking toward the windows",
+        "… facing the monitor") says which way the speaker looks; the first (where they
+        stand) is kept and the second is consumed so it is not read as the target."""
+        tok = self.peek()
+        lx = lexicon()
+        if tok is None or not (tok.has("view") or tok.lemma in lx.facing_verbs):
+            return
+        snap = self.state()
+        self.advance()
+        while (nxt := self.peek()) is not None and nxt.text in _PARTICLES and not self.np_start():
+            self.advance()
+        if not self.np_start() or self.parse_np(landmark=True) is None:
+            self.restore(snap)
+            return
+        self.notes.append("second viewpoint phrase: the speaker's heading")
+
+    def _more_follows(self) -> bool:
+        """Whether the request goes on after a viewpoint phrase (else that phrase names
+        the target: "look at the clock")."""
+        tok = self.peek()
+        if tok is None:
+            return self.more_sentences  # "Face the radiator. The picture to its left."
+        if tok.has("comma", "and"):
+            return self.peek(1) is not None or self.more_sentences
+        return tok.has("anaphor", "det", "be", "one") or self.np_start()
+
+    def _skip_clause(self) -> None:
+        """Skip to the end of a subordinate clause (a comma, "and", or the end)."""
+        while (tok := self.peek()) is not None and not tok.has("comma", "and"):
+            self.advance()
+        if self.at("comma"):
+            self.advance()
+        self.view_end = self.i
+
+    @staticmethod
+    def _position_landmark(lm: NP) -> NP | None:
+        """The object a position phrase is about ("the top of the stairs" → stairs)."""
+        for con in lm.constraints:
+            if isinstance(con, RelationConstraint):
+                target = con.landmark.target
+                return NP(kind=OBJECT, labels=list(target.labels), words=target.noun.split())
+        return None
+
+    def _from_clause(self, k: int) -> bool:
+        """ "from the door, …" opens a viewpoint only at the start and before a comma."""
+        if k or self.i > 0:
+            return False
+        j = 1
+        while (t := self.peek(j)) is not None and not t.has("comma"):
+            j += 1
+        return self.peek(j) is not None and j <= 7
+
+    def _viewpoint_landmark(self, lm: NP | None) -> Landmark:
+        """The viewpoint's landmark; entering a room (or "walking in") means its door."""
+        if lm is None or lm.kind == ROOM:
+            room = [self._place(lm, False)] if lm is not None and lm.room_type else []
+            door = Target(labels=("door",), noun="door")
+            return Landmark(target=door, constraints=tuple(room))
+        return lm.landmark()
 
     def _purpose(self, out: Clause) -> None:
         """ "for a meeting", "while watching TV" at the top level."""
@@ -128,6 +394,21 @@ class ClauseParser(Grammar):
                 self.advance()
             return
         flip = neg and np.kind == ONE  # "except the ones in the bedroom"
+        if out.head_negated and not neg and out.head is not None and _contrast(prev):
+            if np.kind == OBJECT and np.labels:
+                self._exclude(out, out.head)  # "not the sofa but the armchair"
+                out.head, out.head_negated = None, False
+            elif np.kind == ONE:  # "not the white cabinet, the brown one": a cabinet
+                old = out.head
+                old.constraints = [
+                    replace(c, negated=not c.negated) for c in old.constraints
+                ] + np.constraints
+                old.places += np.places
+                out.head_negated = False
+                self.notes.append(
+                    f"'not the {old.noun}' then 'one': the kind stays, its details are negated"
+                )
+                return
         out.places += [replace(c, negated=not c.negated) if flip else c for c in np.places]
         np.places = []
         if np.kind == FLOOR:
@@ -146,7 +427,9 @@ class ClauseParser(Grammar):
                 return
             if flip:  # "not the red one. …": the one excluded, described by negation
                 np.constraints = [replace(c, negated=not c.negated) for c in np.constraints]
+            self.adopt_group(np)
             out.head = np
+            out.head_negated = neg and np.kind == OBJECT and bool(np.labels)
             return
         if self._replaces_head(out, np, neg):
             return
@@ -158,7 +441,7 @@ class ClauseParser(Grammar):
         if np.kind != OBJECT or np.known or prev is None:
             return False
         assert isinstance(prev, Tok)
-        after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det")
+        after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
         after_purpose = prev.has("for", "while") and bool(out.functions)
         if after_verb or after_purpose:
             self.notes.append(f"{np.noun!r} is the object of {prev.text!r}, not the target")
@@ -173,7 +456,7 @@ class ClauseParser(Grammar):
         assert head is not None
         if neg or np.kind != OBJECT or not np.labels:
             return False
-        if head.kind == ONE and not head.labels:
+        if head.kind in (ONE, ANAPHOR, VAGUE) and not head.labels:
             np.constraints = head.constraints + np.constraints
             np.other = np.other or head.other
         elif head.kind == ROOM and head.room_type is not None:
@@ -188,17 +471,22 @@ class ClauseParser(Grammar):
     def _second_phrase(self, out: Clause, np: NP, neg: bool, coordinated: bool) -> None:
         head = out.head
         assert head is not None
+        prev_except = self._after_except
         vague = (GENERIC, GENERIC_AREA, VAGUE)
         if np.kind == ONE or (np.kind in (GENERIC, VAGUE) and head.kind in vague):
             cons = [replace(c, negated=not c.negated) if neg else c for c in np.constraints]
             head.constraints += cons
-        elif neg and np.kind == OBJECT and np.labels:
-            out.excluded_labels.append(
-                LabelConstraint(
-                    labels=tuple(np.labels), noun=np.noun, negated=True, text=f"not {np.noun}"
+        elif neg and np.kind == OBJECT and np.labels and prev_except and not _related(head, np):
+            # "a pen from anywhere apart from Jake's desk": a place ruled out
+            head.constraints.append(
+                RelationConstraint(
+                    predicate="near", landmark=np.landmark(), negated=True,
+                    weight=self.weight("relation"), text=f"not near {np.noun}",
                 )
-            )
-        elif np.kind == OBJECT and np.known and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
+            )  # fmt: skip
+        elif neg and np.kind == OBJECT and np.labels:
+            self._exclude(out, np)
+        elif np.kind == OBJECT and np.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
             np.constraints = head.constraints + np.constraints
             out.head = np
         elif coordinated and np.kind == OBJECT and head.kind == OBJECT:
@@ -210,6 +498,14 @@ class ClauseParser(Grammar):
             head.constraints += np.constraints
         else:
             self.notes.append(f"ignored second noun phrase {np.noun or np.kind!r}")
+
+    @staticmethod
+    def _exclude(out: Clause, np: NP) -> None:
+        out.excluded_labels.append(
+            LabelConstraint(
+                labels=tuple(np.labels), noun=np.noun, negated=True, text=f"not {np.noun}"
+            )
+        )
 
     def _place(self, np: NP, neg: bool) -> Constraint:
         if np.kind == ROOM:

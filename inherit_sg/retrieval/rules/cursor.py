@@ -3,6 +3,8 @@ waiting for the constraint it scopes, and an emphasis or hedge for the next weig
 
 from __future__ import annotations
 
+from typing import Any
+
 from inherit_sg.retrieval.constraints import DEFAULT_WEIGHTS, EMPHASIS_BOOST, HEDGE_FACTOR
 from inherit_sg.retrieval.rules.tagger import Tok
 
@@ -54,11 +56,17 @@ class Cursor:
         self._neg = False
         self._stress: str | None = None
         self.with_depth = 0
+        self.group: Any = None  # a pending group phrase ("in the row of lockers")
 
     def peek(self, k: int = 0) -> Tok | None:
         """The token ``k`` places ahead, or None past the end."""
         j = self.i + k
         return self.toks[j] if 0 <= j < len(self.toks) else None
+
+    def text_at(self, k: int = 0) -> str:
+        """The words of the token ``k`` places ahead ("" past the end)."""
+        tok = self.peek(k)
+        return tok.text if tok is not None else ""
 
     def at(self, *tags: str, k: int = 0) -> bool:
         """Whether the token ``k`` ahead has any of ``tags``."""

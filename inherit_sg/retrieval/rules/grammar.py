@@ -14,12 +14,12 @@ taken by the first constraint built after it, so it scopes exactly that constrai
 
 from __future__ import annotations
 
-from inherit_sg.retrieval import lexicon as lx
 from inherit_sg.retrieval.constraints import (
     AreaConstraint,
     AttributeConstraint,
     Constraint,
     FloorConstraint,
+    PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
     Superlative,
@@ -40,10 +40,18 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.tagger import Tok
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab.lexicon import lexicon
 
 # Prepositions that put the target in a room or area ("in", "inside", "within", "at");
 # "on" only in "on this side" (vague places) and for floors.
 _PLACE_PREDICATES = ("inside", "near", "on")
+# Words a viewpoint clause may open with before its cue: "if you are facing …".
+VIEW_OPENERS = frozenset({"if", "when", "as", "while", "once", "whilst"})
+# Participles whose particle is the state itself: "turned on" = on.
+_SWITCHED = frozenset({"turned", "switched", "powered", "left", "plugged"})
+# Prepositions that, with "wall" or "corner", say where in its room the target stands.
+_PLACEMENT_PREDICATES = ("on", "next_to", "near", "inside", "with", "above", "in_front_of")
 # What may follow a relative pronoun: "that is", "which isn't", "that must be red".
 _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", "away",
                   "colour", "adj", "material", "super", "with", "without")  # fmt: skip
@@ -84,7 +92,9 @@ class Grammar(Cursor):
                 self.advance()
                 np.kind, np.floor = FLOOR, tok.tags["floor"]
                 return count + 1
-            if tok.has("det") and not tok.has("neg"):
+            if tok.has("other"):
+                np.other = True  # "another chair", "the other one"
+            elif tok.has("det") and not tok.has("neg"):
                 if tok.text in ("this", "that") and not self._modifier_or_noun(1):
                     break  # anaphor "that" / "this"
                 if tok.text.startswith("all") or tok.text in ("these", "those"):
@@ -98,12 +108,16 @@ class Grammar(Cursor):
                 np.ordinal = tok.tags["ord"]
             elif tok.has("super"):
                 np.superlative = tok.tags["super"]
+            elif tok.has("side") and not self.at("of", k=1):
+                np.direction = tok.tags["side"]  # "the leftmost chair"
+            elif tok.has("dir") and tok.tags["dir"] in ("left", "right") and self._head_follows(1):
+                np.direction = tok.tags["dir"]  # "the left chair", "the right one"
+            elif tok.has("middle") and self._head_follows(1) and not self.at("floor_noun", k=1):
+                np.superlative = "middle"  # "the middle chair", "the centre one"
             elif tok.has("shade") and self.at("colour", k=1):
                 pass
             elif tok.has("colour", "material", "adj") and self._adjective_here():
                 self._attribute(np, tok)
-            elif tok.has("other"):
-                np.other = True
             elif tok.has("neg") and self.at("colour", "material", "adj", k=1):
                 self.negate()
             elif tok.has("emph", "hedge"):
@@ -118,6 +132,14 @@ class Grammar(Cursor):
             count += 1
         return count
 
+    def _head_follows(self, k: int) -> bool:
+        """A noun, "one" or an adjective then a noun follows ``k`` tokens ahead."""
+        if self.nounish(k) or self.at("one", k=k):
+            return True
+        return self.at("colour", "material", "adj", k=k) and (
+            self.nounish(k + 1) or self.at("one", k=k + 1)
+        )
+
     def _modifier_or_noun(self, k: int) -> bool:
         return self.nounish(k) or self.at("colour", "material", "adj", "super", "ord", k=k)
 
@@ -127,7 +149,7 @@ class Grammar(Cursor):
         assert tok is not None
         if tok.has("colour", "adj"):
             return not (tok.has("noun") and not self.nounish(1))
-        return self.nounish(1) or self.at("colour", "adj", k=1)
+        return self.nounish(1) or self.at("colour", "adj", "one", k=1)  # "the metal one"
 
     def _attribute(self, np: NP, tok: Tok) -> None:
         neg = self.take_neg()
@@ -164,18 +186,24 @@ class Grammar(Cursor):
                 self.advance()
                 np.kind, np.floor = FLOOR, max(0, self.advance().tags["num"] - 1)
                 break
-            if tok.has("seeker") and not tok.has("noun"):
-                if self.nounish(1) and not self.at("one", k=1):
+            if tok.has("seeker", "abstract") and not tok.has("noun"):
+                if self.nounish(1) and not self.at("one", k=1) and not tok.has("abstract"):
                     run.append(self.advance())  # "a group discussion"
                     continue
                 if not run:
-                    np.kind = PERSON
+                    np.kind = PERSON  # people and times are never what is sought
                     self.advance()
                 break
             if self.nounish() and not tok.has("one", "be"):
                 run.append(self.advance())
                 continue
-            if tok.has("fverb", "overb") and not tok.has("prep", "det", "modal", "be"):
+            if tok.tag in ("VBN", "VBD") and run and not tok.has("noun", "unk"):
+                break  # a participle after the noun describes it: "a board covered with"
+            if (
+                tok.has("fverb", "overb")
+                and not tok.has("prep", "det", "modal", "be")
+                and (tok.tag.startswith("NN") or tok.tag in ("VBG", ""))
+            ):
                 # gerund or verb-noun used as a noun: "viewing space", "a snack"
                 after_modifier = self.at("det", "adj", "colour", "material", "num", k=-1)
                 if self.nounish(1) or after_modifier or (run and not self.np_start(1)):
@@ -194,7 +222,8 @@ class Grammar(Cursor):
             np.kind = ROOM
             np.labels = [np.noun] if len(run) > 1 else []
         elif last.has("area_head") and not last.has("noun"):
-            deictic = len(run) == 1 and last.text in lx.GENERIC_AREAS
+            self._name_area(np)
+            deictic = len(np.words) == 1 and last.text in lexicon().generic_areas
             np.kind = GENERIC_AREA if deictic else AREA
             np.labels = [] if deictic else [np.noun]
         elif last.has("room") and not (last.has("noun") and len(run) == 1):
@@ -213,11 +242,43 @@ class Grammar(Cursor):
         elif last.has("material") and not last.has("unk"):
             np.labels = [last.text]
         else:
-            np.labels = [last.tags.get("unk") or lx.singular(last.text)]
+            np.labels = [_open_label(run)]
         if np.kind == OBJECT and len(run) > 1:
             self.notes.append(f"compound noun {np.noun!r} → label {'/'.join(np.labels)}")
 
+    @staticmethod
+    def _name_area(np: NP) -> None:
+        """Open adjectives belong to an area's name: "the casual viewing space", "the
+        social area" (known attributes such as "quiet" still describe it)."""
+        words: list[str] = []
+        kept: list[Constraint] = []
+        for con in np.constraints:
+            if (
+                isinstance(con, AttributeConstraint)
+                and con.key == "other"
+                and not con.negated
+                and con.value not in lexicon().adjectives
+            ):
+                words.append(con.text or con.value)
+                continue
+            kept.append(con)
+        if words:
+            np.constraints = kept
+            np.words = [*words, *np.words]
+
     def _finish(self, np: NP) -> None:
+        if np.superlative == "middle":
+            np.constraints.append(
+                Superlative(
+                    measure="middle",
+                    direction=np.direction,
+                    weight=self.weight("superlative"),
+                    text="the middle one",
+                )
+            )
+            np.superlative, np.direction = None, None
+        if np.direction is not None and np.ordinal is None and np.superlative is None:
+            np.ordinal = 1  # "the one on the left": the first from the left
         if np.ordinal is not None:
             side = f" from the {np.direction}" if np.direction else ""
             np.constraints.append(
@@ -244,16 +305,27 @@ class Grammar(Cursor):
     def _postmodifiers(self, np: NP, landmark: bool) -> None:
         after_be = False
         while (tok := self.peek()) is not None:
+            if tok.text.split()[0] in VIEW_OPENERS and (tok.has("view") or self.at("seeker", k=1)):
+                break  # "the left one if you're facing the headboard": a viewpoint
             if tok.has("and") and after_be and self.at("colour", "adj", "material", "be", k=1):
                 pass  # "a chair that is red and made of wood"
             elif tok.has("comma", "and", "or", "but", "than", "sub"):
                 break
             elif tok.has("be") and tok.has("fverb") and self.at("modal", k=-1):
                 break  # "somewhere I can put my books away": a verb, not "put" = placed
+            elif tok.has("rel") and landmark and self._plural_clause(np):
+                break  # "the pillows on the couch that aren't white": about the pillows
             elif tok.has("be") or (tok.has("rel") and self.at(*_CLAUSE_STARTS, k=1)):
                 after_be = True
             elif tok.has("wh") and tok.text == "where" and self.at("seeker", k=1):
                 pass  # "a place where I can sit": the verb phrase follows
+            elif (
+                tok.tag in ("VBN", "VBG")
+                and not tok.has("prep", "noun", "unk", "fverb")
+                and self.at("prep", "with", "without", "away", "placement", k=1)
+                and (self.np_start(2) or self.at("placement", k=1))
+            ):
+                after_be = True  # "the boxes stacked by the door", "a lamp standing by"
             elif tok.has("seeker", "modal") and not self.np_start():
                 pass
             elif tok.has("neg"):
@@ -275,7 +347,19 @@ class Grammar(Cursor):
         """Parse one post-modifier starting at ``tok``; False when there is none."""
         if tok.has("prep", "away") and self.with_depth and self.at("anaphor", k=1):
             return False  # "a lamp on it" closes a with-clause
+        if after_be and tok.text in ("on", "off") and self._state_word(np, tok):
+            return True  # "the lamp that's not on"
         if tok.has("prep", "away", "from") and self._direction(np):
+            return True
+        if tok.has("placement"):
+            self.advance()
+            self._placement(np, tok.tags["placement"], tok.text)
+            return True
+        if tok.has("side") and not self.at("of", k=1):
+            self.advance()
+            np.direction = tok.tags["side"]  # "the one farthest left"
+            return True
+        if tok.has("prep") and tok.text == "in" and self._middle_here(np):
             return True
         if tok.has("prep", "away"):
             snap = self.state()
@@ -289,6 +373,7 @@ class Grammar(Cursor):
                 return False
             np.places += places
             np.constraints += [c for c in made if c not in places]
+            self.adopt_group(np)
             return True
         if tok.has("floor") and not landmark:
             self.advance()
@@ -299,15 +384,23 @@ class Grammar(Cursor):
             np.constraints.append(self._superlative(tok.tags["super"], tok.text))
             return True
         if np.superlative in ("closest", "farthest") and tok.has("to", "from"):
+            side = self._towards_side()
+            if side is not None:  # "the farthest chair to the right"
+                np.superlative, np.direction = None, side
+                return True
             self.advance()
             measure, np.superlative = np.superlative, None
             np.constraints.append(self._superlative(measure, measure, landmark_now=True))
             return True
-        if tok.has("with", "without") or (tok.has("have") and after_be):
+        if tok.has("with", "without") or (
+            tok.has("have") and (after_be or self.at("modal", "neg", k=-1))
+        ):
             return self.parse_with(np)
         if after_be and tok.has("colour", "material", "adj"):
             self.advance()
             self._attribute(np, tok)
+            return True
+        if after_be and self._state_word(np, tok):
             return True
         if (tok.has("to") and self.at("fverb", "overb", k=1)) or tok.has("for", "while"):
             self.advance()
@@ -324,21 +417,167 @@ class Grammar(Cursor):
         if tok.has("of") and self.np_start(1):
             self.advance()
             sub = self.parse_np(landmark=True)
-            if sub is not None and sub.kind == ROOM and np.kind in (AREA, GENERIC_AREA):
-                np.places.append(self._room(sub, False, "room", None))  # "corner of the kitchen"
+            position = lexicon().position_nouns.get(" ".join(np.words[-2:])) or (
+                lexicon().position_nouns.get(np.words[-1]) if np.words else None
+            )
+            if sub is not None and position is not None and sub.kind in (OBJECT, ROOM):
+                self._position(np, sub, position)  # "the top of the stairs"
+            elif sub is not None and sub.kind == ROOM:
+                # "the corner of the kitchen", "the floor of the closet"
+                np.places.append(self._room(sub, False, f"of {sub.noun}", None))
+            elif sub is not None and sub.kind == OBJECT and self._picks_from(np):
+                self._partitive(np, sub)  # "the larger of the two toolboxes"
             elif sub is not None:
                 np.words += ["of", *sub.words]
             return True
         return False
 
+    def _plural_clause(self, np: NP) -> bool:
+        """A relative clause whose verb is plural ("that are", "which aren't", "that
+        have") cannot describe a singular noun."""
+        verb = self.peek(1)
+        return (
+            not np.plural
+            and verb is not None
+            and verb.text in ("are", "were", "have", "do", "don't")
+        )
+
+    def _state_word(self, np: NP, tok: Tok) -> bool:
+        """After "is": a participle or "on" / "off" that states the node's state ("that
+        isn't made", "not turned on", "that are not pushed in", "the lamp that's on")."""
+        nxt = self.peek(1)
+        if tok.text in ("on", "off") and (nxt is None or not self.np_start(1)):
+            value = tok.text
+            self.advance()
+        elif tok.tag in ("VBN", "VBD") and not tok.has("prep", "noun", "unk", "be"):
+            self.advance()
+            value = tok.text
+            particle = self.peek()
+            if (
+                particle is not None
+                and particle.text in ("in", "on", "off", "up", "out", "down")
+                and not self.np_start(1)
+            ):
+                self.advance()  # "pushed in", "dried out"; "turned on" is "on"
+                value = particle.text if tok.text in _SWITCHED else f"{tok.text} {particle.text}"
+        else:
+            return False
+        np.constraints.append(
+            AttributeConstraint(
+                key="state", value=value, negated=self.take_neg(), weight=self.weight("attribute"),
+                text=value,
+            )
+        )  # fmt: skip
+        return True
+
+    def _position(self, np: NP, sub: NP, predicate: str) -> None:
+        """ "the top of the stairs", "the far end of the hallway": a position, not a
+        thing; what stands there is sought (in a room: the room; else near the object)."""
+        where = " ".join(np.words)
+        np.kind, np.labels, np.known = VAGUE, [], False
+        np.words = [*np.words, "of", *sub.words]
+        if sub.kind == ROOM:
+            np.places.append(self._room(sub, False, f"{where} of {sub.noun}", None))
+        else:
+            np.constraints.append(
+                RelationConstraint(
+                    predicate=predicate, landmark=sub.landmark(), weight=self.weight("relation"),
+                    text=f"{where} of {sub.noun}",
+                )
+            )  # fmt: skip
+            np.places += sub.places
+        self.notes.append(f"'{where} of {sub.noun}' is a position, not the target")
+
+    def adopt_group(self, np: NP) -> None:
+        """A pending group ("in the row of lockers") names what a bare "the last one"
+        picks from."""
+        group = self.group
+        if group is None or np.kind not in (ONE, ANAPHOR) or np.labels:
+            return
+        np.kind, np.labels, np.words, np.known = OBJECT, group.labels, group.words, group.known
+        np.constraints += group.constraints
+        np.places += group.places
+        self.group = None
+        self.notes.append(f"the one is picked from the group of {group.noun!r}")
+
+    @staticmethod
+    def _picks_from(np: NP) -> bool:
+        """Whether ``np`` picks one of what "of …" names: "the larger of", "the second
+        of", "one of", "the leftmost of", "the stack of" (not "full of", "made of")."""
+        if np.kind == OBJECT and np.words and np.words[-1] in lexicon().quantity_nouns:
+            return True
+        if np.kind not in (ONE, GENERIC) or np.labels:
+            return False
+        ranked = any(isinstance(c, Superlative) for c in np.constraints)
+        return (
+            ranked
+            or np.kind == GENERIC
+            or bool(np.superlative or np.ordinal or np.direction or np.quantity)
+        )
+
+    def _partitive(self, np: NP, sub: NP) -> None:
+        """ "the larger of the two toolboxes", "the second of the chairs": the phrase
+        after "of" names what the head picks from."""
+        np.grouped = np.kind == OBJECT  # "the row of lockers": a group to pick from
+        np.kind, np.labels, np.words, np.known = OBJECT, sub.labels, sub.words, sub.known
+        np.plural = False
+        np.constraints += sub.constraints
+        np.places += sub.places
+        self.notes.append(f"'of {sub.noun}' names what the request picks from")
+
     def _direction(self, np: NP) -> bool:
-        """ "from the left" / "on the right" after an ordinal."""
-        k = 2 if self.at("det", k=1) else 1
+        """ "from the left", "on your right", "to the right side", "in front", "at the
+        back" (no "of" after: "to the left of the sofa" is a relation)."""
+        tok = self.peek()
+        assert tok is not None
+        if (
+            tok.has("prep")
+            and tok.tags["prep"] in ("in_front_of", "behind")
+            and (self.peek(1) is None or self.at("comma", "and", "but", "be", "rel", k=1))
+        ):
+            self.advance()  # "the one in front", "the chair behind"
+            np.direction = "front" if tok.tags["prep"] == "in_front_of" else "back"
+            return True
+        k = 1
+        while self.at("det", "seeker", k=k) and k < 3:
+            k += 1  # "the", "your", "my"
         if not self.at("dir", k=k):
             return False
-        np.direction = self.toks[self.i + k].text
-        self.i += k + 1
+        end = k + 1
+        if self.text_at(end) == "side":
+            end += 1
+        if self.at("of", k=end):
+            return False
+        np.direction = self.toks[self.i + k].tags["dir"]
+        self.i += end
         return True
+
+    def _middle_here(self, np: NP) -> bool:
+        """ "in the middle" / "in the centre" of a row (not "of the room")."""
+        k = 2 if self.at("det", k=1) else 1
+        if not self.at("middle", k=k) or self.at("of", k=k + 1):
+            return False
+        self.i += k + 1
+        if np.superlative is None:
+            np.superlative = "middle"
+        return True
+
+    def _placement(self, np: NP, where: str, text: str) -> None:
+        """A placement constraint ("against the wall", "in the corner"), with the room
+        that may follow ("in the corner of the kitchen")."""
+        np.constraints.append(
+            PlacementConstraint(
+                where=where, negated=self.take_neg(), weight=self.weight("placement"), text=text
+            )
+        )
+        if self.at("of") and self.np_start(1):
+            snap = self.state()
+            self.advance()
+            room = self.parse_np(landmark=True)
+            if room is not None and room.kind == ROOM:
+                np.places.append(self._room(room, False, f"of {room.noun}", None))
+            else:
+                self.restore(snap)
 
     # ---------------------------------------------------------- prepositions
     def parse_pp(self) -> list[Constraint] | None:
@@ -347,7 +586,7 @@ class Grammar(Cursor):
         tok = self.advance()
         neg = self.take_neg()
         predicate = tok.tags["prep"] if not tok.has("away") else "near"
-        if tok.text in lx.OUTSIDE_PREPOSITIONS:
+        if tok.text in lexicon().outside_prepositions:
             predicate = "inside"  # "outside the kitchen": not in it
         if tok.has("away"):
             neg = not neg
@@ -362,6 +601,16 @@ class Grammar(Cursor):
         places = lm.places
         if lm.kind == FLOOR and lm.floor is not None:
             return [self._floor(lm.floor, neg)]
+        if lm.grouped and not neg and predicate in ("inside", "on", "near", "next_to"):
+            self.group = lm  # "in the row of lockers": what "the last one" picks from
+            return [*lm.constraints, *places]
+        where = lexicon().placement_nouns.get(lm.words[-1]) if len(lm.words) == 1 else None
+        if where is not None and predicate in _PLACEMENT_PREDICATES:
+            # "on the far wall", "in the back corner": where in the room, not an object
+            placement = PlacementConstraint(
+                where=where, negated=neg, weight=weighted("placement", stress), text=text
+            )
+            return [placement, *places]
         if lm.kind in (ROOM, AREA) and predicate in _PLACE_PREDICATES and tok.text != "on":
             if lm.kind == ROOM:
                 place: Constraint = self._room(lm, neg, text, stress)
@@ -389,6 +638,8 @@ class Grammar(Cursor):
         if self.at("and"):
             self.advance()
             second = self.parse_np(landmark=True)
+        if second is None and (first.plural or (first.quantity or 0) >= 2):
+            second = first  # "between the two beds": two of one kind
         if second is None:
             self.notes.append("'between' with one landmark read as 'near'")
             return [RelationConstraint(predicate="near", landmark=first.landmark(), negated=neg,
@@ -423,8 +674,15 @@ class Grammar(Cursor):
             return True
         predicate = "contains" if np.kind in (ROOM, AREA, GENERIC_AREA) else "with"
         after = self.peek()
-        if after is not None and after.has("prep") and self.at("anaphor", k=1):
-            predicate = lx.WITH_INVERSE.get(after.tags["prep"], after.tags["prep"])
+        on_it = after is not None and after.has("prep") and self.at("anaphor", k=1)
+        if predicate == "with" and self._is_part(np, lm):
+            if on_it:
+                self.i += 2  # "a cup with no lid on it": the lid is the cup's
+            np.constraints.append(self._part(np, lm, neg, tok.text))
+            return True
+        if on_it:
+            assert after is not None
+            predicate = lexicon().with_inverse.get(after.tags["prep"], after.tags["prep"])
             self.i += 2
         np.constraints.append(
             RelationConstraint(
@@ -438,11 +696,50 @@ class Grammar(Cursor):
         np.places += lm.places
         return True
 
+    @staticmethod
+    def _is_part(np: NP, lm: NP) -> bool:
+        """Whether ``lm`` ("a yellow lid", "wheels") names a part of what ``np`` names: a
+        part of that kind, or a part of some kind that is no object kind itself ("wheels",
+        "armrests"; a "blanket" on a bed is an object of its own)."""
+        if lm.kind != OBJECT or not lm.words:
+            return False
+        word = lm.words[-1]
+        if any(object_vocab.is_part(word, label) for label in np.labels):
+            return True
+        return not lm.known and object_vocab.is_part(word, None)
+
+    def _part(self, np: NP, lm: NP, neg: bool, word: str) -> AttributeConstraint:
+        """ "with a yellow lid" → part = "yellow lid" (its colour or material first)."""
+        values = [
+            c.value for c in lm.constraints if isinstance(c, AttributeConstraint) and not c.negated
+        ]
+        # what the phrase went on to say ("with a blue mattress next to a brown
+        # nightstand") describes the whole object, not its part
+        np.constraints += [c for c in lm.constraints if not isinstance(c, AttributeConstraint)]
+        np.places += lm.places
+        label = lm.labels[0] if lm.labels else lm.words[-1]
+        value = " ".join([*values, label])
+        self.notes.append(f"'{word} {lm.noun}' is a part of the target, not an object")
+        return AttributeConstraint(
+            key="part", value=value, negated=neg, weight=weighted("attribute", None),
+            text=f"{word} {' '.join([*values, lm.noun])}",
+        )  # fmt: skip
+
     def _superlative(self, measure: str, text: str, landmark_now: bool = False) -> Superlative:
         weight = self.weight("superlative")
         lm = None
+        if measure in ("closest", "farthest") and not landmark_now:
+            side = self._towards_side()
+            if side is not None:  # "the one farthest to the right"
+                return Superlative(
+                    measure="ordinal", ordinal=1, direction=side, weight=weight,
+                    text=f"{text} to the {side}",
+                )  # fmt: skip
         if measure in ("closest", "farthest"):
-            if not landmark_now and self.at("to", "from"):
+            if not landmark_now and self.text_at() in ("away from", "far from"):
+                self.advance()  # "the cabinet farthest away from the sink"
+                landmark_now = True
+            elif not landmark_now and self.at("to", "from"):
                 self.advance()
                 landmark_now = True
             if landmark_now or self.at("det"):
@@ -454,6 +751,21 @@ class Grammar(Cursor):
             text=f"{text} {lm.noun}" if lm is not None else text,
         )
 
+    def _towards_side(self) -> str | None:
+        """ "to the right", "to your left", "left" after "farthest": the side, consumed."""
+        k = 0
+        if self.at("to", "prep", k=0) and self.peek() is not None:
+            k = 1
+        while self.at("det", "seeker", k=k) and k < 3:
+            k += 1
+        if not self.at("dir", k=k) or self.at("of", k=k + 1):
+            return None
+        side = str(self.toks[self.i + k].tags["dir"])
+        if k == 0 or self.at("to", k=0) or self.text_at() in ("on", "at"):
+            self.i += k + 1
+            return side
+        return None
+
     @staticmethod
     def _room(np: NP, neg: bool, text: str, stress: str | None) -> RoomConstraint:
         return RoomConstraint(
@@ -464,3 +776,16 @@ class Grammar(Cursor):
         if isinstance(value, int):
             return FloorConstraint(level=value, negated=neg, text=f"floor {value}")
         return FloorConstraint(relative=value, negated=neg, text=value)
+
+
+def _open_label(run: list[Tok]) -> str:
+    """The label of a noun no vocabulary knows: the compound with its last word's lemma
+    ("paper towel dispensers" → "paper towel dispenser"), or the known kind its tail names
+    ("metal shelving unit" → the kind of "shelving unit")."""
+    while len(run) > 1 and run[0].has("room"):
+        run = run[1:]  # "cafeteria roundmetaltable": the room word says where, not what
+    last = run[-1]
+    head = str(last.tags.get("unk") or last.lemma or last.text)
+    phrase = " ".join([*(t.text for t in run[:-1]), head])
+    known = object_vocab.labels_for(phrase)
+    return known[0] if len(known) == 1 else phrase

@@ -1,39 +1,166 @@
-"""The offline rule-based request parser: text → :class:`ParsedQuery`.
+"""The offline request parser: text → :class:`ParsedQuery`.
 
-Pipeline: check the text, tokenise (contractions, punctuation), detect the frame (global
-question, refinement), tag words against the lexicon (multi-word nouns, plurals,
-synonyms, filler), parse the noun-phrase grammar, and assemble weighted constraints.
-Parse results are cached per text (they are immutable).
+Pipeline: check the text; analyse it with spaCy (sentences, tokens, lemmas, tags);
+detect the frame (a problem statement, a global question, a refinement); tag words
+against the vocabulary (multi-word nouns, prepositions, viewpoint cues, placements) with
+open-vocabulary readings by part of speech; parse the noun-phrase grammar sentence by
+sentence; assemble weighted constraints. Sentences after the one that names the target
+refine it ("This is a white trash can. It is in the corner next to the desk."). Parse
+results are cached per text (they are immutable).
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
-from inherit_sg.retrieval.rules.clause import ClauseParser
+from inherit_sg.retrieval.rules.clause import Clause, ClauseParser
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, OBJECT, ONE, VAGUE
 from inherit_sg.retrieval.rules.problems import split_problem
 from inherit_sg.retrieval.rules.tagger import tag
-from inherit_sg.retrieval.rules.tokens import check_query_text, tokenize
+from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
+from inherit_sg.vocab.lexicon import lexicon
+
+_VAGUE_HEADS = (GENERIC, GENERIC_AREA, VAGUE)
+# Sentences parsed per request (longer texts are talk around the request).
+MAX_SENTENCES = 8
+
+
+def _flat(sentences: list[list[Word]]) -> list[Word]:
+    out: list[Word] = []
+    for sentence in sentences:
+        if out:
+            out.append(COMMA)
+        out.extend(sentence)
+    return out
+
+
+def _corrects(sentence: list[Word]) -> bool:
+    """Whether a sentence opens by correcting the one before ("no wait, I mean …")."""
+    words = [w.text for w in sentence[:5] if w.text != ","]
+    text = " ".join(words)
+    return any(text.startswith(c) or text.startswith(f"no {c}") for c in lexicon().corrections)
+
+
+_CORRECTION_WORDS = frozenset(
+    {
+        "no",
+        "wait",
+        "sorry",
+        "actually",
+        "i",
+        "mean",
+        "meant",
+        "rather",
+        "correction",
+        ",",
+        "oh",
+        "oops",
+        "um",
+    }
+)
+
+
+def _after_correction(sentence: list[Word]) -> list[Word]:
+    """The sentence without its opening correction words ("no wait, I mean …")."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _CORRECTION_WORDS:
+        i += 1
+    return sentence[i:] or sentence
+
+
+def _same_thing(head: NP, other: NP) -> bool:
+    """Whether a later sentence's subject is the target again ("it", "the one", "the
+    chair" after "a chair")."""
+    if other.kind in (ANAPHOR, ONE):
+        return True
+    return other.kind == OBJECT and bool(set(other.labels) & set(head.labels))
+
+
+def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
+    """Fold a later sentence's clause into the request's clause."""
+    head = out.head
+    assert head is not None
+    if out.viewpoint is None:
+        out.viewpoint = more.viewpoint
+    out.excluded_labels += more.excluded_labels
+    other = more.head
+    if other is not None and more.head_negated and other.kind == OBJECT and other.labels:
+        ClauseParser._exclude(out, other)  # "Under the window, the heater. Not the fan."
+        return
+    if other is not None and out.head_negated and other.kind == ONE:
+        head.constraints = [replace(c, negated=not c.negated) for c in head.constraints]
+        head.constraints += other.constraints
+        out.places += other.places
+        out.head_negated = False  # "Never use the red towel. Grab a different one."
+        return
+    if other is None:
+        out.places += more.places
+        head.constraints += more.pending + more.functions
+        return
+    if head.kind in (ONE, ANAPHOR) and not head.labels and other.kind == OBJECT and other.labels:
+        notes.append(f"{other.noun!r} names the target the first sentence left open")
+        other.constraints = head.constraints + other.constraints
+        out.head = other
+        out.places += more.places
+        return
+    if _same_thing(head, other):
+        head.constraints += more.pending + other.constraints
+        out.places += more.places + other.places
+        if other.kind == OBJECT and head.kind in _VAGUE_HEADS:
+            out.head = replace(other, constraints=head.constraints + other.constraints)
+        return
+    if head.kind in _VAGUE_HEADS and other.kind == OBJECT:
+        notes.append(f"{other.noun!r} names the target the first sentence left open")
+        other.constraints = head.constraints + other.constraints
+        out.head = other
+        out.places += more.places
+        return
+    notes.append(f"sentence about {other.noun or other.kind!r} (not the target) ignored")
 
 
 def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
-    problem, words = split_problem(tokenize(text))
+    analysed, fixes = analyse_text(text)
+    problem, sentences = split_problem(analysed)
+    words = _flat(sentences)
     reason = global_reason(words) if words or problem is None else None
     if reason is not None:
         return ParsedQuery(text=text, no_target_reason=reason, notes=("frame: global question",))
-    refine, words = refine_frame(words)
-    notes = ["frame: refinement of the previous request"] if refine else []
-    tokens = tag(words)
-    clause = ClauseParser(tokens, notes).parse(refine)
+    if len(sentences) > MAX_SENTENCES:
+        sentences = sentences[:MAX_SENTENCES]  # a request is a few sentences; the rest is talk
+    notes: list[str] = [f"spelling: {wrong!r} read as {right!r}" for wrong, right in fixes]
+    refine = False
+    if sentences:
+        refine, first = refine_frame(sentences[0])
+        sentences = [first, *sentences[1:]] if first else sentences[1:]
+    if refine:
+        notes.append("frame: refinement of the previous request")
+    clause = Clause()
+    for n, sentence in enumerate(sentences):
+        tokens = tag(sentence)
+        if clause.head is None:
+            opening = ClauseParser(tokens, notes)
+            opening.more_sentences = n + 1 < len(sentences)
+            opening.parse(refine, clause)
+            continue
+        correcting = _corrects(sentence)
+        if correcting:
+            tokens = tag(_after_correction(sentence))
+        more = ClauseParser(tokens, notes).parse(refine)
+        if correcting and more.head is not None and more.head.kind == OBJECT:
+            notes.append(f"'{more.head.noun}' corrects the earlier request")
+            clause = more  # "can you find the cat? no wait, I mean the cat's carrier"
+        else:
+            _merge_sentence(clause, more, notes)
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.functions.append(problem)  # an explicit request ("where can I lie down") leads
-    return assemble(text, clause, refine, notes, words)
+    return assemble(text, clause, refine, notes, [w.text for w in words])
 
 
 @lru_cache(maxsize=4096)
@@ -42,7 +169,7 @@ def _parse_cached(text: str) -> ParsedQuery:
 
 
 def parse_rules(text: str) -> ParsedQuery:
-    """Parse a request with the rule grammar; raises :class:`QueryTextError` on bad text."""
+    """Parse a request offline; raises :class:`QueryTextError` on bad text."""
     return _parse_cached(check_query_text(text))
 
 

@@ -38,6 +38,8 @@ class NP:
     ordinal: int | None = None
     direction: str | None = None
     known: bool = False  # the head noun is in the lexicon
+    excluded: bool = False  # the object of "I don't want …": a kind ruled out
+    grouped: bool = False  # "the row of lockers": a group a "one" picks from
 
     @property
     def noun(self) -> str:
@@ -63,9 +65,11 @@ class NP:
             for fn in functions:
                 labels += [x for x in fn.labels if x not in labels]
         attributes = tuple(
-            c.value
-            for c in self.constraints
-            if isinstance(c, AttributeConstraint) and not c.negated
+            dict.fromkeys(
+                c.value
+                for c in self.constraints
+                if isinstance(c, AttributeConstraint) and not c.negated and c.key != "part"
+            )
         )
         return Target(
             layer=self.layer,
@@ -75,7 +79,11 @@ class NP:
             attributes=attributes,
             plural=self.plural,
             quantity=self.quantity,
-            any=self.kind in (GENERIC, GENERIC_AREA, VAGUE) or (self.kind == ROOM and not labels),
+            # "the one on the left" alone: any object (a follow-up takes the previous kind);
+            # a bare "the other one" stays empty until a conversation resolves it
+            any=self.kind in (GENERIC, GENERIC_AREA, VAGUE)
+            or (self.kind == ONE and bool(self.constraints))
+            or (self.kind == ROOM and not labels),
             anaphor=self.kind == ANAPHOR,
         )
 

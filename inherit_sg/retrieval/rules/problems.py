@@ -1,79 +1,98 @@
 """Problem statements that imply a need: "My hands are dirty. Is there something that
 could help?" → ``wash hands`` (sink); "It's too dark in here" → ``light``.
 
-The first sentence of a request (the whole request when it is one sentence) is read as a
+The first sentence of a request (its first clause when it is one sentence) is read as a
 problem when it is a statement (it opens with a subject and neither asks nor seeks) and
-names a state of the lexicon's ``PROBLEMS`` (with its subject, where one is needed). The
-statement is then taken out of the request: its nouns are not the target ("hands") and
-its adjectives are not attributes ("dark"); the rest ("is there something in the kitchen
-that could help") is parsed as usual and gets the function.
+names a state of the vocabulary's problems (``functions.toml``), with its subject where
+one is needed. The statement is then taken out of the request: its nouns are not the
+target ("hands") and its adjectives are not attributes ("dark"); the rest ("is there
+something in the kitchen that could help") is parsed as usual and gets the function.
 """
 
 from __future__ import annotations
 
+from functools import lru_cache
 from itertools import pairwise
 
-from inherit_sg.retrieval import lexicon as lx
 from inherit_sg.retrieval.constraints import FunctionConstraint
-from inherit_sg.retrieval.lexicon_functions import PROBLEMS
 from inherit_sg.retrieval.rules.cursor import weighted
-
-# Words a statement about oneself or one's things opens with.
-_SUBJECTS = frozenset({
-    "i", "it", "my", "the", "our", "this", "these", "those", "there", "someone", "somebody",
-    "we", "its", "that", "his", "her", "their", "everything", "all",
-})  # fmt: skip
-# Words that make the sentence a request rather than a statement of the problem.
-_REQUEST_WORDS = frozenset({
-    "where", "somewhere", "anywhere", "place", "spot", "find", "show", "take", "want",
-    "like", "would", "help", "could", "can", "should", "locate", "looking", "which", "need",
-    "let",
-})  # fmt: skip
-# "needs to stay cold": "need" with a subject other than the speaker states a problem.
-_SPEAKER = frozenset({"i", "we"})
-# Nouns a statement may open with ("books are piling up", "dishes are stacked").
-_PROBLEM_SUBJECTS = frozenset(s for _, subjects, _, _ in PROBLEMS for s in subjects)
+from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.vocab.functions import problems
+from inherit_sg.vocab.lexicon import lexicon
 
 
-def _terms(words: list[str]) -> set[str]:
-    terms = {lx.singular(w) for w in words} | set(words)
-    return terms | {f"{a} {b}" for a, b in pairwise(words)}
+@lru_cache(maxsize=1)
+def _problem_subjects() -> frozenset[str]:
+    """Nouns a statement may open with ("books are piling up", "dishes are stacked")."""
+    return frozenset(s for p in problems() for s in p.subjects)
 
 
-def _is_statement(words: list[str]) -> bool:
+# Dependencies of words that modify a noun: "the dark cabinets" names cabinets, it does
+# not state that something is dark.
+_MODIFIERS = frozenset({"amod", "compound", "nmod", "det", "poss", "nummod"})
+
+
+def _terms(words: list[Word]) -> set[str]:
+    """Single words that are not noun modifiers, and every pair of words ("upper floor")."""
+    heads = [w for w in words if w.dep not in _MODIFIERS]
+    terms = {w.text for w in heads} | {w.lemma for w in heads}
+    texts = [w.text for w in words]
+    lemmas = [w.lemma for w in words]
+    return (
+        terms | {f"{a} {b}" for a, b in pairwise(texts)} | {f"{a} {b}" for a, b in pairwise(lemmas)}
+    )
+
+
+def _is_statement(words: list[Word]) -> bool:
     if not words:
         return False
-    if words[0] not in _SUBJECTS and lx.singular(words[0]) not in _PROBLEM_SUBJECTS:
+    lx = lexicon().problems
+    first = words[0]
+    if first.text not in lx["subjects"] and first.lemma not in _problem_subjects():
         return False
-    asks = _REQUEST_WORDS - ({"need"} if words[0] not in _SPEAKER else set())
-    return not any(w in asks for w in words)
+    if first.pos in ("VERB", "AUX"):
+        return False  # "head to the gym" asks; it states no problem
+    asks = lx["request_words"] - ({"need"} if first.text not in lx["speaker"] else set())
+    if any(w.text in asks or w.lemma in asks for w in words):
+        return False
+    # a statement has a verb: "my hands are dirty"; "the dark cabinets …" names a thing
+    return any(w.pos in ("VERB", "AUX") for w in words)
 
 
-def match_problem(words: list[str]) -> tuple[str, tuple[str, ...]] | None:
+def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     """The (function, likely kinds) a problem sentence implies, or None."""
     terms = _terms(words)
     loose: tuple[str, tuple[str, ...]] | None = None
-    for function, subjects, states, labels in PROBLEMS:
-        if not terms.intersection(states):
+    for problem in problems():
+        if not terms.intersection(problem.states):
             continue
-        if subjects and terms.intersection(subjects):
-            return function, labels
-        if not subjects and loose is None:
-            loose = (function, labels)
+        if problem.subjects and terms.intersection(problem.subjects):
+            return problem.function, problem.kinds
+        if not problem.subjects and loose is None:
+            loose = (problem.function, problem.kinds)
     return loose
 
 
-def split_problem(words: list[str]) -> tuple[FunctionConstraint | None, list[str]]:
-    """A leading problem statement as a function, and the words left to parse."""
-    cut = words.index(",") if "," in words else len(words)
+def split_problem(
+    sentences: list[list[Word]],
+) -> tuple[FunctionConstraint | None, list[list[Word]]]:
+    """A leading problem statement as a function, and the sentences left to parse."""
+    if not sentences:
+        return None, sentences
+    words = sentences[0]
+    cut = next((i for i, w in enumerate(words) if w.text == ","), len(words))
     first = words[:cut]
     if not _is_statement(first):
-        return None, words
+        return None, sentences
     sense = match_problem(first)
     if sense is None:
-        return None, words
+        return None, sentences
     function, labels = sense
     made = FunctionConstraint(
-        function=function, labels=labels, weight=weighted("function", None), text=" ".join(first)
+        function=function,
+        labels=labels,
+        weight=weighted("function", None),
+        text=" ".join(w.text for w in first),
     )
-    return made, words[cut + 1 :]
+    rest = words[cut + 1 :]
+    return made, ([rest] if rest else []) + sentences[1:]

@@ -1,9 +1,14 @@
-"""Lexical tagging: words → tokens carrying every reading the lexicon knows.
+"""Lexical tagging: analysed words → tokens carrying every reading the vocabulary knows.
 
-Multi-word entries ("coffee table", "next to", "could you please") are merged by longest
-match; a plural last word matches its singular entry. A token keeps all its readings
+spaCy supplies the word classes and lemmas (:mod:`.tokens`); the vocabulary files supply
+domain meaning. Multi-word entries ("coffee table", "next to", "in the corner", "as you
+come through") are merged by longest match; a phrase matches with its last word's lemma
+when that word is a plural noun ("arm chairs" → "arm chair") and with its first word's
+lemma when it is a verb ("hanging out" → "hang out"). A token keeps all its readings
 (``"glass"`` is both a material and a noun, ``"that"`` a determiner, a relative pronoun
-and an anaphor) and the grammar picks one from context.
+and an anaphor) and the grammar picks one from context. A word no vocabulary knows is
+read by its part of speech: a noun is an open-vocabulary object word (its lemma is the
+label), an adjective an attribute kept as written, a verb a verb by its lemma.
 """
 
 from __future__ import annotations
@@ -12,7 +17,13 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
 
-from inherit_sg.retrieval import lexicon as lx
+from inherit_sg.retrieval.rules.spelling import is_known_word
+from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.vocab import colours as colour_vocab
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab import rooms as room_vocab
+from inherit_sg.vocab.functions import function_verbs
+from inherit_sg.vocab.lexicon import lexicon
 
 # Closed-class words without lexicon tables of their own.
 _SIMPLE: dict[str, str] = {
@@ -31,19 +42,25 @@ _SIMPLE: dict[str, str] = {
     "during": "while",
     "than": "than",
     ",": "comma",
-    "left": "dir",
-    "right": "dir",
 }
 _ONE_WORDS = {"one": False, "ones": True}
+_QUESTION_WORDS = frozenset({"where", "what", "which", "how", "why", "when", "who", "whom"})
+_RELATIVE_TAGS = frozenset({"WDT", "WP", "WP$"})
+_RELATIVE_WORDS = frozenset({"that", "which", "who", "whose"})
+_NUMERAL_SUFFIXES = ("st", "nd", "rd", "th")
 
 
 @dataclass
 class Tok:
-    """One token: its surface words and its readings (tag → value)."""
+    """One token: its surface words, readings (tag → value) and spaCy's analysis of
+    its last word."""
 
     text: str
     tags: dict[str, Any] = field(default_factory=dict)
     plural: bool = False
+    pos: str = ""
+    lemma: str = ""
+    tag: str = ""
 
     def has(self, *tags: str) -> bool:
         """True when the token has any of ``tags``."""
@@ -60,170 +77,237 @@ def _put(table: dict[tuple[str, ...], dict[str, Any]], phrase: str, tag: str, va
 @lru_cache(maxsize=1)
 def phrase_table() -> tuple[dict[tuple[str, ...], dict[str, Any]], int, frozenset[str]]:
     """(phrase → readings, longest phrase length, function verb set), built once."""
+    lx = lexicon()
     t: dict[tuple[str, ...], dict[str, Any]] = {}
-    for word, labels in lx.SHARED_NOUNS.items():
-        t.setdefault(tuple(word.split()), {})["noun"] = labels
-    for canon, synonyms in lx.OBJECTS.items():
-        for phrase in (canon, *synonyms):
-            _put(t, phrase, "noun", (canon,))
-    for canon, synonyms in lx.ROOMS.items():
-        for phrase in (canon, *synonyms):
-            _put(t, phrase, "room", canon)
+    for phrase, label in object_vocab.phrases().items():
+        _put(t, phrase, "noun", (label,))
+    for phrase in object_vocab.general_words():
+        labels = object_vocab.labels_for(phrase)
+        if labels:
+            t.setdefault(tuple(phrase.split()), {})["noun"] = labels
+    for phrase, rtype in room_vocab.room_words().items():
+        _put(t, phrase, "room", rtype)
     simple_sets = (
-        (lx.AREA_HEADS, "area_head"),
-        (lx.VAGUE_PLACES, "vague"),
-        (lx.GENERIC_THINGS, "generic"),
-        (lx.ROOM_WORDS, "room_word"),
-        (lx.FLOOR_NOUNS, "floor_noun"),
-        (lx.NEGATIONS, "neg"),
-        (lx.EXCEPTIONS, "except"),
-        (lx.EMPHASIS, "emph"),
-        (lx.HEDGES, "hedge"),
-        (lx.DETERMINERS, "det"),
-        (lx.SEEKERS, "seeker"),
-        (lx.MODALS, "modal"),
-        (lx.BE_WORDS, "be"),
-        (lx.HAVE_WORDS, "have"),
-        (lx.REL_PRONOUNS, "rel"),
-        (lx.ANAPHORS, "anaphor"),
-        (lx.OTHER_WORDS, "other"),
-        (lx.QUESTION_WORDS, "wh"),
-        (lx.AWAY_PREPOSITIONS, "away"),
-        (lx.OUTSIDE_PREPOSITIONS, "away"),
-        (lx.ADVERBS, "adv"),
-        (lx.SUBORDINATORS, "sub"),
-        (lx.EXAMPLE_WORDS, "like"),
-        (lx.FILLER, "filler"),
+        (lx.area_heads, "area_head"),
+        (lx.vague_places, "vague"),
+        (lx.generic_things, "generic"),
+        (lx.room_words, "room_word"),
+        (lx.floor_nouns, "floor_noun"),
+        (lx.negations, "neg"),
+        (lx.exceptions, "except"),
+        (lx.emphasis, "emph"),
+        (lx.hedges, "hedge"),
+        (lx.determiners, "det"),
+        (lx.seekers, "seeker"),
+        (lx.be_like, "be"),
+        (lx.have_like, "have"),
+        (lx.anaphors, "anaphor"),
+        (lx.other_words, "other"),
+        (lx.away_prepositions, "away"),
+        (lx.outside_prepositions, "away"),
+        (lx.adverbs, "adv"),
+        (lx.subordinators, "sub"),
+        (lx.example_words, "like"),
+        (lx.filler, "filler"),
+        (lx.middle, "middle"),
+        (lx.abstract_nouns, "abstract"),
     )
-    for words, tag in simple_sets:
+    for words, tag_name in simple_sets:
         for phrase in words:
-            _put(t, phrase, tag, phrase)
+            _put(t, phrase, tag_name, phrase)
     valued: tuple[tuple[dict[str, Any], str], ...] = (
-        (lx.COLOURS, "colour"),
-        (lx.MATERIALS, "material"),
-        (lx.ADJECTIVES, "adj"),
-        (lx.PREPOSITIONS, "prep"),
-        (lx.SUPERLATIVES, "super"),
-        (lx.ORDINALS, "ord"),
-        (lx.NUMBERS, "num"),
-        (lx.FLOOR_PHRASES, "floor"),
+        (colour_vocab.colour_words(), "colour"),
+        (lx.materials, "material"),
+        (lx.adjectives, "adj"),
+        (lx.prepositions, "prep"),
+        (lx.superlatives, "super"),
+        (lx.ordinals, "ord"),
+        (lx.numbers, "num"),
+        (lx.floor_phrases, "floor"),
+        (lx.directions, "dir"),
+        (lx.sides, "side"),
+        (lx.placements, "placement"),
+        (lx.viewpoints, "view"),
     )
-    for tables, tag in valued:
+    for tables, tag_name in valued:
         for phrase, value in tables.items():
-            _put(t, phrase, tag, value)
-    for word, n in lx.ORDINALS.items():
-        for noun in lx.FLOOR_NOUNS:
+            _put(t, phrase, tag_name, value)
+    for word, n in lx.ordinals.items():
+        for noun in lx.floor_nouns:
             _put(t, f"{word} {noun}", "floor", n - 1 if n > 0 else "top")
-    for word, tag in _SIMPLE.items():
-        _put(t, word, tag, word)
-    for word in lx.COLOUR_SHADES:
+    for word, tag_name in _SIMPLE.items():
+        _put(t, word, tag_name, word)
+    for word in colour_vocab.shade_words():
         _put(t, word, "shade", word)
-    verbs: set[str] = set()
-    for _, verb_list, _, _ in lx.FUNCTIONS:
-        for verb in verb_list:
-            verbs.add(verb)
-            _put(t, verb, "fverb", verb)
+    verbs = function_verbs()
+    for verb in verbs:
+        _put(t, verb, "fverb", verb)
     longest = max(len(k) for k in t)
-    return t, longest, frozenset(verbs)
+    return t, longest, verbs
 
 
-def _lookup(words: list[str], i: int) -> tuple[int, dict[str, Any], bool]:
+def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
     table, longest, verbs = phrase_table()
     for n in range(min(longest, len(words) - i), 0, -1):
-        key = tuple(words[i : i + n])
+        span = words[i : i + n]
+        if any(w.text == "," for w in span[1:]):
+            continue
+        key = tuple(w.text for w in span)
         hit = table.get(key)
         plural = False
-        if hit is None:
-            last = lx.singular(key[-1])
-            if last != key[-1]:
-                hit = table.get((*key[:-1], last))
-                plural = hit is not None
-        if hit is None and n >= 2:
-            # inflected multi-word verb: "hanging out", "throwing away"
-            lemma = lx.verb_lemma(key[0], verbs)
-            phrase = " ".join((lemma, *key[1:]))
-            if lemma != key[0] and phrase in verbs:
+        last = span[-1]
+        if hit is None and last.plural:
+            for stem in _singulars(last):
+                hit = table.get((*key[:-1], stem))
+                if hit is not None:
+                    plural = "noun" in hit
+                    break
+        if hit is None and span[0].pos in ("VERB", "AUX") and span[0].lemma != key[0]:
+            phrase = " ".join((span[0].lemma, *key[1:]))
+            if phrase in verbs:
                 hit = {"fverb": phrase}
         if hit is not None:
-            return n, hit, plural
+            return n, hit, plural or (last.plural and "noun" in hit)
     return 0, {}, False
 
 
-def _single(word: str) -> Tok:
-    """Readings of a word with no lexicon entry (inflections, numbers, open vocabulary)."""
+def _singulars(word: Word) -> list[str]:
+    """Singular forms to look a plural noun up by: spaCy's lemma, then the word less its
+    plural ending where the vocabulary knows that form ("ottomans": spaCy's lemmatiser
+    says "othman")."""
+    out = [word.lemma] if word.lemma != word.text else []
+    text = word.text
+    for cut in (1, 2):
+        if len(text) > cut + 2:
+            out.append(text[:-cut])
+    return out
+
+
+def _number(word: Word) -> int | None:
+    text = word.text
+    if text.isdigit():
+        return int(text)
+    return None
+
+
+def _grammar(tok: Tok, word: Word, first: bool) -> None:
+    """Readings that come from spaCy's tags rather than from the vocabulary."""
+    lx = lexicon()
+    text = word.text
+    if word.lemma == "be" and word.pos in ("AUX", "VERB"):
+        tok.tags.setdefault("be", text)
+    if word.tag == "MD" or (word.lemma == "do" and word.pos == "AUX"):
+        tok.tags.setdefault("modal", text)
+    if text in _QUESTION_WORDS and (word.tag.startswith("W") or first):
+        tok.tags.setdefault("wh", text)
+    if text in _RELATIVE_WORDS and (word.tag in _RELATIVE_TAGS or text == "that"):
+        tok.tags.setdefault("rel", text)
+    if word.pos == "DET" and text not in lx.anaphors and "det" not in tok.tags:
+        tok.tags["det"] = text
+    if word.dep == "poss" and word.pos in ("NOUN", "PROPN") and text not in lx.anaphors:
+        # a possessor acts as a determiner: "jake's desk", "the dog's leash"
+        tok.tags = {"det": text}
+    if word.lemma in lx.other_verbs and word.pos in ("VERB", "AUX"):
+        tok.tags.setdefault("overb", word.lemma)
+
+
+def _single(word: Word, first: bool) -> Tok:
+    """Readings of a word with no vocabulary entry (open vocabulary, by part of speech)."""
     _, _, verbs = phrase_table()
-    tok = Tok(word)
-    if word in _ONE_WORDS:
+    tok = Tok(word.text, pos=word.pos, lemma=word.lemma, tag=word.tag)
+    text = word.text
+    if text in _ONE_WORDS:
         tok.tags["one"] = True
-        tok.plural = _ONE_WORDS[word]
+        tok.plural = _ONE_WORDS[text]
         return tok
-    if word.isdigit():
-        tok.tags["num"] = int(word)
+    number = _number(word)
+    if number is not None:
+        tok.tags["num"] = number
         return tok
-    if word[:-2].isdigit() and word[-2:] in ("st", "nd", "rd", "th"):
-        tok.tags["ord"] = int(word[:-2])
+    if text[:-2].isdigit() and text[-2:] in _NUMERAL_SUFFIXES:
+        tok.tags["ord"] = int(text[:-2])
         return tok
-    lemma = lx.verb_lemma(word, verbs)
-    if lemma in verbs and lemma != word:
-        tok.tags["fverb"] = lemma
-    else:
-        other = lx.verb_lemma(word, lx.OTHER_VERBS)
-        if other in lx.OTHER_VERBS:
-            tok.tags["overb"] = other
-    if word.endswith("ly") and len(word) > 4:
-        tok.tags["adv"] = word
-    elif "fverb" not in tok.tags and "overb" not in tok.tags:
-        noun = lx.singular(word)
-        tok.tags["unk"] = noun
-        tok.plural = noun != word
+    _grammar(tok, word, first)
+    if tok.has("be", "modal", "wh", "rel", "det"):
+        return tok
+    if word.pos in ("VERB", "AUX") and not is_known_word(text):
+        tok.tags["unk"] = text  # no English verb: a name spaCy guessed ("roundmetaltable")
+    elif word.pos in ("VERB", "AUX"):
+        if word.lemma in verbs:
+            tok.tags["fverb"] = word.lemma
+        else:
+            tok.tags.setdefault("overb", word.lemma)
+            if word.tag == "VB" and first:
+                tok.tags["seek"] = word.lemma  # an imperative: "select", "identify"
+    elif word.pos in ("NOUN", "PROPN"):
+        tok.tags["unk"] = word.lemma if word.plural else text
+        tok.plural = word.plural
+    elif word.pos == "ADJ":
+        tok.tags["adj"] = ("other", word.lemma if word.tag == "JJ" else text)
+    elif word.pos == "ADV":
+        tok.tags["adv"] = text
+    elif word.pos == "NUM":
+        tok.tags["num"] = 1
+    elif word.pos == "X" and text.isalpha():
+        tok.tags["unk"] = text  # a word spaCy does not know as anything else
     return tok
 
 
-def tag(words: list[str]) -> list[Tok]:
-    """Tokens for ``words`` (output of :func:`tokenize`), longest phrases first."""
+# Readings after which a word needs no open-vocabulary reading of its own.
+_CLOSED = ("noun", "room", "unk", "det", "num", "ord", "prep", "be", "modal", "neg", "anaphor",
+           "seeker", "generic", "vague", "area_head", "room_word", "floor_noun", "floor",
+           "colour", "material", "adj", "fverb", "one", "side", "middle", "super", "placement",
+           "dir", "ord", "abstract")  # fmt: skip
+
+
+def _open_readings(tok: Tok, word: Word) -> None:
+    """A word the vocabulary knows only in another role ("face" as a viewpoint cue, "back"
+    as a direction) keeps its reading as a noun or verb where spaCy reads it so ("wash my
+    face", "the back of the chair")."""
+    if word.pos == "VERB" and word.tag != "VB" and not tok.has("fverb", "prep", "be", "modal"):
+        tok.tags.setdefault("overb", word.lemma)  # "Grandpa left his hearing aid"
+    if tok.has(*_CLOSED) or word.text in _SIMPLE:
+        return
+    if word.pos in ("NOUN", "PROPN"):
+        tok.tags["unk"] = word.lemma if word.plural else word.text
+        tok.plural = word.plural
+    elif word.pos == "VERB":
+        tok.tags.setdefault("overb", word.lemma)
+
+
+def tag(words: list[Word]) -> list[Tok]:
+    """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
+    longest phrases first."""
     out: list[Tok] = []
     i = 0
     while i < len(words):
         n, readings, plural = _lookup(words, i)
+        first = i == 0 or words[i - 1].text in (",", "please", "and", "then", "now", "just")
         if n:
-            tok = Tok(" ".join(words[i : i + n]), dict(readings), plural)
-            if n == 1 and words[i] in _ONE_WORDS:
-                tok.tags["one"] = True
-                tok.plural = _ONE_WORDS[words[i]]
-            if n == 1 and "overb" not in tok.tags and words[i] in lx.OTHER_VERBS:
-                tok.tags["overb"] = words[i]
+            last = words[i + n - 1]
+            tok = Tok(
+                " ".join(w.text for w in words[i : i + n]),
+                dict(readings),
+                plural,
+                pos=last.pos,
+                lemma=last.lemma,
+                tag=last.tag,
+            )
+            if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
+                del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
+                tok.tags["filler"] = words[i].text
+            if n == 1:
+                if words[i].text in _ONE_WORDS:
+                    tok.tags["one"] = True
+                    tok.plural = _ONE_WORDS[words[i].text]
+                _grammar(tok, words[i], first)
+                _open_readings(tok, words[i])
+                imperative = words[i].tag == "VB" and first and words[i].pos == "VERB"
+                if imperative and not tok.has("fverb", "prep", "noun", "room"):
+                    tok.tags["seek"] = words[i].lemma
             out.append(tok)
             i += n
         else:
-            out.append(_single(words[i]))
+            out.append(_single(words[i], first))
             i += 1
     return out
-
-
-def _entry(phrase: str) -> dict[str, Any]:
-    table, _, _ = phrase_table()
-    words = phrase.lower().replace("_", " ").replace("-", " ").split()
-    if not words:
-        return {}
-    hit = table.get(tuple(words))
-    if hit is None:
-        hit = table.get((*words[:-1], lx.singular(words[-1])))
-    return hit or {}
-
-
-def canonical_noun(phrase: str) -> tuple[str, ...]:
-    """Canonical labels of a noun phrase ("couches" → ``("sofa",)``); an unknown noun
-    gives its singular form ("security scanners" → ``("security scanner",)``)."""
-    hit = _entry(phrase)
-    if "noun" in hit:
-        return tuple(hit["noun"])
-    words = phrase.lower().split()
-    return (" ".join([*words[:-1], lx.singular(words[-1])]),) if words else ()
-
-
-def room_type(phrase: str) -> str | None:
-    """Canonical room type of a room phrase ("restroom" → "bathroom"), or None."""
-    value = _entry(phrase).get("room")
-    if value is None and len(phrase.split()) > 1:
-        value = _entry(phrase.split()[-1]).get("room")
-    return str(value) if value is not None else None

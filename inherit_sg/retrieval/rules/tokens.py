@@ -1,36 +1,46 @@
-"""Request text checks, normalisation and word tokenisation."""
+"""Request text checks and analysis: text → sentences of words with spaCy's lemmas and
+tags.
+
+The text is normalised only where spaCy's tokenizer would otherwise split or join the
+wrong things (curly quotes, camel case "CoffeeTable", separators "TV-stand", letters glued
+to digits "bedroom2", a missing space after a full stop "bed.it"), and typos are corrected
+(:mod:`.spelling`); spaCy then gives the
+tokens, lemmas, part-of-speech tags, the dependency parse and the sentences. Contractions
+come back as full words ("n't" → "not", "'s" → "is" where it is the verb; a possessive
+"'s" is dropped); clause punctuation becomes ``","`` tokens.
+"""
 
 from __future__ import annotations
 
 import re
 import unicodedata
+from dataclasses import dataclass
 
 from inherit_sg.errors import QueryTextError
+from inherit_sg.nlp import analyse
 
-MAX_QUERY_CHARS = 1000
+MAX_QUERY_CHARS = 5000
 
-_CONTRACTIONS = {
-    "can't": "can not",
-    "cannot": "can not",
-    "won't": "will not",
-    "shan't": "shall not",
-    "i'm": "i am",
-    "let's": "let us",
-    "where's": "where is",
-    "what's": "what is",
-    "that's": "that is",
-    "there's": "there is",
-    "here's": "here is",
-    "it's": "it is",
-    "who's": "who is",
-    "how's": "how is",
-}
-_SUFFIXES = (("n't", " not"), ("'re", " are"), ("'ve", " have"), ("'ll", " will"), ("'d", " would"))
-_WORD = re.compile(r"[a-z]+(?:'[a-z]+)?|\d+(?:st|nd|rd|th)?|,")
 _QUOTES = str.maketrans({"’": "'", "‘": "'", "`": "'", "´": "'", "“": '"', "”": '"'})
-_SEPARATORS = re.compile(r"[-_/+]+")
-_LETTER_DIGIT = re.compile(r"(?<=[a-z])(?=\d)|(?<=\d)(?!st\b|nd\b|rd\b|th\b)(?=[a-z])")
-_CLAUSE_BREAK = re.compile(r"[;:!?.()\[\]]+")
+_CAMEL = re.compile(r"(?<=[a-z])(?=[A-Z][a-z])")
+_SEPARATORS = re.compile(r"[-_/+#]+")
+_LETTER_DIGIT = re.compile(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?!st\b|nd\b|rd\b|th\b)(?=[A-Za-z])")
+_GLUED_STOP = re.compile(r"(?<=[a-z])([.!?;,])(?=[A-Za-z])")
+_SPACES = re.compile(r"\s+")
+# Contracted forms spaCy returns as separate tokens, by (text, coarse tag).
+_CONTRACTED = {
+    "n't": "not",
+    "nt": "not",
+    "'re": "are",
+    "'m": "am",
+    "'ve": "have",
+    "'ll": "will",
+    "'d": "would",
+    "ca": "can",
+    "wo": "will",
+    "sha": "shall",
+}
+_CLAUSE_PUNCT = frozenset(",;:!?.()[]{}…—–")
 
 
 def check_query_text(text: object) -> str:
@@ -56,32 +66,84 @@ def check_query_text(text: object) -> str:
     return stripped
 
 
-def _expand(word: str) -> str:
-    if word in _CONTRACTIONS:
-        return _CONTRACTIONS[word]
-    for suffix, full in _SUFFIXES:
-        if word.endswith(suffix):
-            stem = word[: -len(suffix)]
-            return (stem if stem not in ("ca", "wo") else stem + "n") + full
-    if word.endswith("'s"):
-        return word[:-2]
-    return word.replace("'", "")
+@dataclass(frozen=True)
+class Word:
+    """One analysed word: lower-case surface form (contractions expanded), lemma,
+    coarse and fine part-of-speech tags and dependency label."""
+
+    text: str
+    lemma: str
+    pos: str
+    tag: str
+    dep: str = ""
+
+    @property
+    def plural(self) -> bool:
+        """True for a plural noun (spaCy's NNS / NNPS)."""
+        return self.tag in ("NNS", "NNPS")
+
+
+COMMA = Word(",", ",", "PUNCT", ",")
+
+
+def normalise(text: str) -> str:
+    """The text spaCy is given (see the module docstring)."""
+    text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
+    text = _CAMEL.sub(" ", text)
+    text = _SEPARATORS.sub(" ", text)
+    text = _LETTER_DIGIT.sub(" ", text)
+    text = _GLUED_STOP.sub(r"\1 ", text)
+    return _SPACES.sub(" ", text).strip()
+
+
+def _word(tok_text: str, lemma: str, pos: str, tag: str, dep: str) -> Word | None:
+    low = tok_text.lower()
+    if low in _CONTRACTED and (low.startswith("'") or low in ("n't", "nt") or tag == "MD"):
+        full = _CONTRACTED[low]
+        return Word(full, "not" if full == "not" else lemma.lower(), pos, tag, dep)
+    if low in ("'s", "s") and tag == "VBZ":
+        return Word("is", "be", pos, tag, dep)
+    if low == "'s" and lemma.lower() == "us":
+        return Word("us", "us", pos, tag, dep)
+    if tag == "POS" or low in ("'", "'s"):
+        return None  # possessive: "the kid's bed" -> "the kid bed"
+    if pos == "PUNCT" or all(c in _CLAUSE_PUNCT for c in low):
+        return COMMA if any(c in _CLAUSE_PUNCT for c in low) else None
+    if not any(c.isalnum() for c in low):
+        return None  # quotes, symbols
+    return Word(low, lemma.lower() if lemma.strip() else low, pos, tag, dep)
+
+
+def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
+    """Sentences of :class:`Word` s (clause punctuation as ``","``; empty sentences
+    dropped), and the spelling corrections made first. ``text`` must have passed
+    :func:`check_query_text`."""
+    from inherit_sg.retrieval.rules.spelling import correct_spelling
+
+    corrected, fixes = correct_spelling(normalise(text))
+    doc = analyse(corrected)
+    out: list[list[Word]] = []
+    for sent in doc.sents:
+        words: list[Word] = []
+        for tok in sent:
+            word = _word(tok.text, tok.lemma_, tok.pos_, tok.tag_, tok.dep_)
+            if word is None or (word is COMMA and (not words or words[-1] is COMMA)):
+                continue
+            words.append(word)
+        while words and words[-1] is COMMA:
+            words.pop()
+        if words:
+            out.append(words)
+    return out, fixes
 
 
 def tokenize(text: str) -> list[str]:
-    """Lower-case words with contractions expanded; clause breaks become commas.
-
-    ``"Where's the TV-stand? I can't see it"`` → ``where is the tv stand , i can not see it``.
-    """
-    text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
-    # split camel case ("CoffeeTable") before lower-casing
-    text = re.sub(r"(?<=[a-z])(?=[A-Z])", " ", text).lower()
-    text = _SEPARATORS.sub(" ", text)
-    text = _LETTER_DIGIT.sub(" ", text)
-    text = _CLAUSE_BREAK.sub(" , ", text)
-    words: list[str] = []
-    for raw in _WORD.findall(text):
-        words.extend(_expand(raw).split())
-    while words and words[-1] == ",":
-        words.pop()
-    return words
+    """The request's words in order, sentences joined by ``","`` (for display and for
+    the function guesser): ``"Where's the TV-stand? I can't see it"`` → ``where is the tv
+    stand , i can not see it``."""
+    out: list[str] = []
+    for sentence in analyse_text(check_query_text(text))[0]:
+        if out:
+            out.append(",")
+        out.extend(w.text for w in sentence)
+    return out

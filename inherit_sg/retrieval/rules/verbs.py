@@ -12,26 +12,25 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from inherit_sg.retrieval import lexicon as lx
 from inherit_sg.retrieval.constraints import Constraint, FunctionConstraint
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import Sense, match_function, open_function
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT
 from inherit_sg.retrieval.rules.tagger import Tok
+from inherit_sg.vocab.lexicon import lexicon
 
 if TYPE_CHECKING:
     from inherit_sg.retrieval.rules.grammar import Grammar
 
-# Verbs whose "on / in / at" object is where the function happens.
-_LOCATIVE = frozenset({
-    "sit", "sit down", "lie", "lie down", "sleep", "nap", "relax", "rest", "eat", "dine",
-    "work", "study", "read", "lounge", "recline", "perch", "wait",
-})  # fmt: skip
+# Verbs whose negated object is ruled out: "I don't want the leather chair", "never use
+# the red towel".
+_CHOICE_VERBS = frozenset(
+    {"want", "need", "like", "use", "mean", "choose", "pick", "take", "grab", "bring"}
+)
 _VERB_CONTEXT = (
     "to", "modal", "seeker", "and", "or", "for", "while", "rel", "wh", "comma", "overb", "sub",
     "neg",
 )  # fmt: skip
-_LOCATIVE_PREPS = frozenset({"on", "in", "at", "inside", "upon", "on top of"})
 _VERB_FILLERS = ("want", "need", "like", "possible", "wish")
 
 
@@ -42,7 +41,7 @@ def verb_reading(tok: Tok) -> str | None:
     if tok.has("have"):
         return "have"
     verb = tok.tags.get("overb")
-    return verb if verb in lx.LIGHT_VERBS else None
+    return verb if verb in lexicon().light_verbs else None
 
 
 def is_verb_here(g: Grammar) -> bool:
@@ -68,7 +67,8 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     start = g.i
     tok = g.advance()
     verb = verb_reading(tok) or tok.text
-    if g.take_neg():
+    refused = g.take_neg()
+    if refused and tok.lemma not in _CHOICE_VERBS:
         g.notes.append(f"negation before verb {tok.text!r} ignored")
     stress = g.take_stress()
     while g.at("adv") and not g.at("prep"):
@@ -76,7 +76,8 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     head: NP | None = None
     obj: NP | None = None
     nxt = g.peek()
-    if nxt is not None and nxt.text in _LOCATIVE_PREPS and verb in _LOCATIVE:
+    lx = lexicon()
+    if nxt is not None and nxt.text in lx.locative_prepositions and verb in lx.locative_verbs:
         snap = g.state()
         g.advance()
         place = g.parse_np(landmark=True)
@@ -92,12 +93,24 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     elif g.np_start() and not g.at("floor"):
         obj = _objects(g)
     words = [t.text for t in g.toks[start + 1 : g.i]]
-    sense = match_function(verb, words, obj.words if obj is not None else None)
+    lemmas = [lemma_of(t) for t in g.toks[start + 1 : g.i]]
+    sense = match_function(verb, words, obj.words if obj is not None else None, lemmas)
     if sense is None and obj is None and g.at("wh"):
         sense, words = _wh_object(g, verb, words)
     if sense is None and tok.has("wh"):
         return [], None  # "what's a good spot …": a question word, not the verb "what"
-    if sense is None and verb in lx.LIGHT_VERBS:
+    named = obj is not None and obj.kind == OBJECT and bool(obj.labels)
+    if named and refused and tok.lemma in _CHOICE_VERBS:
+        assert obj is not None  # "I don't want the leather chair": that one is ruled out
+        obj.excluded = True
+        g.notes.append(f"'not {tok.text} {obj.noun}': ruled out")
+        return [], obj
+    if named and _past(g, start):
+        # "where did I put my glasses", "I left my keys on …": the thing put is sought
+        assert obj is not None
+        g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
+        return [], obj
+    if sense is None and (verb in lx.light_verbs or named):
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
@@ -127,12 +140,30 @@ def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, l
     return sense, [*words, *extra]
 
 
+def lemma_of(tok: Tok) -> str:
+    """The token's lemma (a multi-word token is its own lemma)."""
+    return tok.lemma if tok.lemma and " " not in tok.text else tok.text
+
+
+def _past(g: Grammar, start: int) -> bool:
+    """Whether the verb at ``start`` is in the past ("I left", "did I put", "have I
+    left"): it reports what happened to its object, it does not ask for a function."""
+    tok = g.toks[start]
+    if tok.tag in ("VBD", "VBN"):
+        return True
+    before = g.toks[max(0, start - 3) : start]
+    return any(t.text in ("did", "had", "have", "has") for t in before)
+
+
 def _object_marker(tok: Tok, verb: str) -> bool:
+    lx = lexicon()
     if tok.has("of"):
         return True
+    if tok.text == "on" and verb not in lx.locative_verbs:
+        return True  # "check on the bread", "turn on the lamp"
     if tok.has("for"):
-        return verb not in _LOCATIVE
-    return tok.text == "in" and verb in lx.LIGHT_VERBS
+        return verb not in lx.locative_verbs
+    return tok.text == "in" and verb in lx.light_verbs
 
 
 def _objects(g: Grammar) -> NP | None:
@@ -156,7 +187,7 @@ def parse_purpose(g: Grammar) -> tuple[list[Constraint], NP | None]:
     snap = g.state()
     g.parse_np(landmark=True)
     words = [t.text for t in g.toks[snap[0] : g.i]]
-    sense = match_function(None, words)
+    sense = match_function(None, words, lemmas=[lemma_of(t) for t in g.toks[snap[0] : g.i]])
     if sense is None:
         g.restore(snap)  # not a purpose: the phrase is parsed as an ordinary one
         return [], None

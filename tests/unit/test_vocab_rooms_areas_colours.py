@@ -1,0 +1,202 @@
+"""Room, area and colour vocabularies (rooms.toml, areas.toml, colours.toml): loaders on
+the real files, room names by alias and tail, and malformed files."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+import inherit_sg.vocab as vocab
+from inherit_sg.mapping.areas import label_area
+from inherit_sg.mapping.room_semantics import floor_phrase, infer_room_type
+from inherit_sg.perception import colour_names as perception_colours
+from inherit_sg.vocab import VocabularyError, areas, colours, rooms
+
+
+def _clear() -> None:
+    vocab.load_table.cache_clear()
+    vocab.vocabulary_info.cache_clear()
+    rooms.clear_caches()
+    areas.clear_caches()
+    colours.clear_caches()
+
+
+@pytest.fixture
+def data_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    """A copy of the vocabulary files that the loaders read instead of the real ones."""
+    copy = tmp_path / "data"
+    shutil.copytree(vocab.DATA_DIR, copy)
+    monkeypatch.setattr(vocab, "DATA_DIR", copy)
+    _clear()
+    yield copy
+    monkeypatch.undo()
+    _clear()
+
+
+# ------------------------------------------------------------------ rooms
+def test_room_types_keep_todays_set_and_evidence() -> None:
+    types = rooms.room_types()
+    assert types[:6] == ("bedroom", "bathroom", "kitchen", "living room", "dining room", "office")
+    assert {"hallway", "garage", "closet", "classroom"} <= set(types) and len(types) == 21
+    ev = rooms.evidence()
+    assert list(ev) == [
+        "bedroom",
+        "bathroom",
+        "kitchen",
+        "living room",
+        "dining room",
+        "office",
+        "laundry room",
+        "garage",
+    ]
+    assert ev["bedroom"] == {"bed": 3.0, "nightstand": 1.5, "wardrobe": 1.0, "dresser": 1.0}
+    assert ev["garage"]["car"] == 4.0 and ev["dining room"] == {"dining table": 3.0}
+    assert rooms.level_words() == ("ground", "second", "third", "fourth", "fifth")
+
+
+def test_aliases_and_room_words() -> None:
+    assert "guest room" in rooms.aliases("bedroom")
+    assert {"den", "tv room", "family room"} <= set(rooms.aliases("living room"))
+    assert rooms.aliases("no such room") == ()
+    words = rooms.room_words()
+    assert words["bedroom"] == "bedroom" and words["foyer"] == "hallway"
+    assert words["powder room"] == "bathroom" and words["study"] == "office"
+    assert all(words[t] == t for t in rooms.room_types())
+
+
+@pytest.mark.parametrize(
+    ("phrase", "rtype"),
+    [
+        ("bedroom", "bedroom"),
+        ("Master Bedroom", "bedroom"),
+        ("guest room", "bedroom"),
+        ("bedroom 2", "bedroom"),
+        ("bedroom #3", "bedroom"),
+        ("upstairs guest bathroom", "bathroom"),
+        ("half bath", "bathroom"),
+        ("ensuite", "bathroom"),
+        ("den", "living room"),
+        ("the tv room", "living room"),
+        ("family room 1", "living room"),
+        ("foyer", "hallway"),
+        ("dining hall", "dining room"),  # the longest tail wins over "hall"
+        ("walk-in closet", "closet"),
+        ("big storage closet", "closet"),
+        ("study", "office"),
+        ("room", None),
+        ("room 4", None),
+        ("", None),
+        ("spaceship", None),
+    ],
+)
+def test_room_type(phrase: str, rtype: str | None) -> None:
+    assert rooms.room_type(phrase) == rtype
+
+
+def test_room_labels_are_unchanged() -> None:
+    assert infer_room_type(["bed", "nightstand", "lamp"]) == "bedroom"
+    assert infer_room_type(["toilet", "sink"]) == "bathroom"
+    assert infer_room_type(["sofa", "tv", "coffee table"]) == "living room"
+    assert infer_room_type(["car"]) == "garage"
+    assert infer_room_type(["door", "painting"]) == "hallway"
+    assert infer_room_type(["chair", "plant"]) == "room"
+    assert floor_phrase(0) == "the ground floor" and floor_phrase(7) == "the level 7 floor"
+
+
+# ------------------------------------------------------------------ areas
+def test_area_rules_keep_todays_content_and_order() -> None:
+    rules = areas.area_rules()
+    assert list(rules)[:3] == ["sleeping area", "dining area", "cooking area"]
+    assert list(rules)[-1] == "entrance area" and len(rules) == 15
+    assert rules["sleeping area"] == (
+        frozenset({"bed"}),
+        frozenset({"nightstand", "bedside table", "table lamp", "pillow"}),
+    )
+    assert rules["parking area"] == (frozenset({"car"}), frozenset())
+    assert areas.area_labels() == tuple(rules)
+    assert label_area(["bed", "nightstand"]) == "sleeping area"
+    assert label_area(["table", "chair", "chair"]) == "meeting area"
+    assert label_area(["plant"]) == "plant area"
+
+
+# ---------------------------------------------------------------- colours
+def test_colours_match_the_perception_palette() -> None:
+    names = colours.colour_names()
+    assert names[0] == "red" and names[-1] == "beige" and len(names) == 12
+    protos = colours.prototypes()
+    assert list(protos) == list(names)
+    assert protos["black"] == ((30, 30, 30), (12, 12, 14))
+    assert names == perception_colours.COLOUR_NAMES
+    assert perception_colours.name_rgb((40, 45, 120)) == "blue"
+
+
+def test_colour_and_shade_words() -> None:
+    words = colours.colour_words()
+    assert words["navy"] == "blue" and words["silver"] == "grey" and words["gray"] == "grey"
+    assert all(words[n] == n for n in colours.colour_names())
+    assert set(words.values()) == set(colours.colour_names())
+    assert colours.shade_words() == frozenset({"light", "dark", "pale", "bright", "deep"})
+
+
+# ------------------------------------------------------------ bad files
+def _edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text(encoding="utf-8")
+    assert old in text
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+
+def test_bad_evidence_weight_names_file_and_field(data_dir: Path) -> None:
+    _edit(data_dir / "rooms.toml", "bed = 3.0", 'bed = "lots"')
+    with pytest.raises(VocabularyError, match=r"rooms\.toml \[types\.bedroom\].*'evidence'"):
+        rooms.evidence()
+
+
+def test_alias_naming_two_types_is_refused(data_dir: Path) -> None:
+    _edit(data_dir / "rooms.toml", '"kitchenette",', '"kitchenette", "den",')
+    with pytest.raises(VocabularyError, match=r"rooms\.toml.*'aliases'.*'den'"):
+        rooms.room_words()
+
+
+def test_aliases_must_be_strings(data_dir: Path) -> None:
+    _edit(data_dir / "rooms.toml", 'aliases = ["larder"]', "aliases = [3]")
+    with pytest.raises(VocabularyError, match=r"rooms\.toml \[types\.pantry\].*'aliases'"):
+        rooms.room_types()
+
+
+def test_area_without_anchors_is_refused(data_dir: Path) -> None:
+    _edit(data_dir / "areas.toml", 'anchors = ["car"]', "anchors = []")
+    with pytest.raises(VocabularyError, match=r'areas\.toml \[areas\."parking area"\].*anchors'):
+        areas.area_rules()
+
+
+def test_bad_prototype_names_file_and_field(data_dir: Path) -> None:
+    _edit(data_dir / "colours.toml", "[30, 30, 30]", "[30, 30, 300]")
+    with pytest.raises(VocabularyError, match=r"colours\.toml \[colours\.black\].*'prototypes'"):
+        colours.prototypes()
+
+
+def test_colour_word_naming_two_colours_is_refused(data_dir: Path) -> None:
+    _edit(data_dir / "colours.toml", '["ivory"]', '["ivory", "navy"]')
+    with pytest.raises(VocabularyError, match=r"colours\.toml.*'words'.*'navy'"):
+        colours.colour_words()
+
+
+def test_missing_version_or_file_names_the_file(data_dir: Path) -> None:
+    _edit(data_dir / "areas.toml", "version = 1", "")
+    with pytest.raises(VocabularyError, match=r"areas\.toml needs an integer 'version'"):
+        areas.area_rules()
+    (data_dir / "colours.toml").unlink()
+    with pytest.raises(VocabularyError, match=r"colours\.toml is missing"):
+        colours.colour_names()
+
+
+def test_the_digest_follows_the_files(data_dir: Path) -> None:
+    before = vocab.vocabulary_info()
+    assert {"rooms", "areas", "colours"} <= set(before["versions"])
+    _edit(data_dir / "rooms.toml", '"larder"', '"larder", "cellar"')
+    _clear()
+    after = vocab.vocabulary_info()
+    assert after["digest"] != before["digest"] and rooms.room_type("wine cellar") == "pantry"
