@@ -76,6 +76,18 @@ def match_function(
     return function, labels
 
 
+def has_own_sense(verb: str, words: list[str], lemmas: list[str] | None = None) -> bool:
+    """Whether ``verb`` itself, with these object words, names a function ("take a
+    shower", "use the toilet"); a purpose noun any verb carries does not count."""
+    terms = object_terms(words, lemmas)
+    table = _by_verb()
+    for key in dict.fromkeys((verb, verb.split()[0])):
+        for _, objects, _ in table.get(key, []):
+            if objects & terms:
+                return True
+    return False
+
+
 def open_function(verb: str, words: list[str]) -> str:
     """A function named by the request's own words when no sense fits ("adjust chair")."""
     lx = lexicon()

@@ -404,8 +404,12 @@ class Grammar(Cursor):
             return True
         if (tok.has("to") and self.at("fverb", "overb", k=1)) or tok.has("for", "while"):
             self.advance()
-            cons, _ = verbs.parse_purpose(self)
-            np.constraints += cons
+            cons, cand = verbs.parse_purpose(self)
+            np.places += [c for c in cons if c.kind in ("room", "area", "floor")]
+            np.constraints += [c for c in cons if c.kind not in ("room", "area", "floor")]
+            if cand is not None and cand.kind in (GENERIC, VAGUE, ONE):
+                np.constraints += cand.constraints  # "a place to find something to read"
+                np.places += cand.places
             return True
         if tok.has("like") and self.np_start(1):
             self.advance()
@@ -546,8 +550,8 @@ class Grammar(Cursor):
         end = k + 1
         if self.text_at(end) == "side":
             end += 1
-        if self.at("of", k=end):
-            return False
+        if self.at("of", k=end) or (self.at("det", k=end) and self.np_start(end)):
+            return False  # "to the left of the sofa", "in near the doorway"
         np.direction = self.toks[self.i + k].tags["dir"]
         self.i += end
         return True
@@ -675,7 +679,7 @@ class Grammar(Cursor):
         predicate = "contains" if np.kind in (ROOM, AREA, GENERIC_AREA) else "with"
         after = self.peek()
         on_it = after is not None and after.has("prep") and self.at("anaphor", k=1)
-        if predicate == "with" and self._is_part(np, lm):
+        if predicate == "with" and self._is_part(np, lm) and not (on_it and lm.known):
             if on_it:
                 self.i += 2  # "a cup with no lid on it": the lid is the cup's
             np.constraints.append(self._part(np, lm, neg, tok.text))

@@ -32,9 +32,10 @@ def _problem_subjects() -> frozenset[str]:
 _MODIFIERS = frozenset({"amod", "compound", "nmod", "det", "poss", "nummod"})
 
 
-def _terms(words: list[Word]) -> set[str]:
-    """Single words that are not noun modifiers, and every pair of words ("upper floor")."""
-    heads = [w for w in words if w.dep not in _MODIFIERS]
+def _terms(words: list[Word], heads_only: bool) -> set[str]:
+    """Words and their lemmas (only those that do not modify a noun when ``heads_only``:
+    "the dark cabinets" states nothing dark), and every pair of words ("upper floor")."""
+    heads = [w for w in words if not heads_only or w.dep not in _MODIFIERS]
     terms = {w.text for w in heads} | {w.lemma for w in heads}
     texts = [w.text for w in words]
     lemmas = [w.lemma for w in words]
@@ -53,20 +54,18 @@ def _is_statement(words: list[Word]) -> bool:
     if first.pos in ("VERB", "AUX"):
         return False  # "head to the gym" asks; it states no problem
     asks = lx["request_words"] - ({"need"} if first.text not in lx["speaker"] else set())
-    if any(w.text in asks or w.lemma in asks for w in words):
-        return False
-    # a statement has a verb: "my hands are dirty"; "the dark cabinets …" names a thing
-    return any(w.pos in ("VERB", "AUX") for w in words)
+    return not any(w.text in asks or w.lemma in asks for w in words)
 
 
 def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     """The (function, likely kinds) a problem sentence implies, or None."""
-    terms = _terms(words)
+    states = _terms(words, heads_only=True)
+    subjects = _terms(words, heads_only=False)
     loose: tuple[str, tuple[str, ...]] | None = None
     for problem in problems():
-        if not terms.intersection(problem.states):
+        if not states.intersection(problem.states):
             continue
-        if problem.subjects and terms.intersection(problem.subjects):
+        if problem.subjects and subjects.intersection(problem.subjects):
             return problem.function, problem.kinds
         if not problem.subjects and loose is None:
             loose = (problem.function, problem.kinds)

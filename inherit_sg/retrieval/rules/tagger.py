@@ -156,7 +156,7 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         hit = table.get(key)
         plural = False
         last = span[-1]
-        if hit is None and last.plural:
+        if hit is None and (last.plural or last.tag == "VBZ"):
             for stem in _singulars(last):
                 hit = table.get((*key[:-1], stem))
                 if hit is not None:

@@ -14,7 +14,12 @@ from typing import TYPE_CHECKING
 
 from inherit_sg.retrieval.constraints import Constraint, FunctionConstraint
 from inherit_sg.retrieval.rules.cursor import weighted
-from inherit_sg.retrieval.rules.functions import Sense, match_function, open_function
+from inherit_sg.retrieval.rules.functions import (
+    Sense,
+    has_own_sense,
+    match_function,
+    open_function,
+)
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab.lexicon import lexicon
@@ -89,9 +94,9 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
                 g.advance()  # a particle: "something to sit on"
     elif nxt is not None and _object_marker(nxt, verb) and g.np_start(1):
         g.advance()  # "dispose of trash", "check for updates", "engage in conversation"
-        obj = _objects(g)
+        obj = _objects(g, landmark=verb not in lx.light_verbs)
     elif g.np_start() and not g.at("floor"):
-        obj = _objects(g)
+        obj = _objects(g, landmark=verb not in lx.light_verbs)
     words = [t.text for t in g.toks[start + 1 : g.i]]
     lemmas = [lemma_of(t) for t in g.toks[start + 1 : g.i]]
     sense = match_function(verb, words, obj.words if obj is not None else None, lemmas)
@@ -110,6 +115,17 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
+    if (
+        verb in lx.light_verbs
+        and obj is not None
+        and obj.kind == OBJECT
+        and obj.known
+        and not has_own_sense(verb, words, lemmas)
+    ):
+        # "find a laptop in the work area": a named thing, not a purpose ("laptop" → work);
+        # but "take a shower" is the verb's own sense (wash)
+        g.notes.append(f"'{tok.text} {obj.noun}': the object is the target")
+        return [], obj
     if sense is None and (verb in lx.light_verbs or named):
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
@@ -120,9 +136,11 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     span = " ".join([tok.text, *words]).strip()
     weight = weighted("function", stress)
     made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
-    # "use the toilet close to the bookshelf": the object's relations place the target
+    # "use the toilet close to the bookshelf", "get a drink in the kitchen": the object's
+    # relations and places place the target
     where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
-    return [made, *where], head
+    places = list(obj.places) if obj is not None else []
+    return [made, *where, *places], head
 
 
 def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, list[str]]:
@@ -166,9 +184,10 @@ def _object_marker(tok: Tok, verb: str) -> bool:
     return tok.text == "in" and verb in lx.light_verbs
 
 
-def _objects(g: Grammar) -> NP | None:
-    """The verb's object, with coordinated ones ("personal items or documents")."""
-    obj = g.parse_np(landmark=True)
+def _objects(g: Grammar, landmark: bool = True) -> NP | None:
+    """The verb's object, with coordinated ones ("personal items or documents"); parsed
+    as the request's head (places and floors attach to it) when ``landmark`` is off."""
+    obj = g.parse_np(landmark=landmark)
     while obj is not None and g.at("and", "or") and g.np_start(1) and not g.at("fverb", k=1):
         g.advance()
         more = g.parse_np(landmark=True)
