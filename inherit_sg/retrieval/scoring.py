@@ -50,7 +50,7 @@ from inherit_sg.retrieval.constraints import (
 )
 from inherit_sg.retrieval.directions import VIEW_PREDICATES, directional_all
 from inherit_sg.retrieval.graph_checks import GraphChecker, Landmarks
-from inherit_sg.retrieval.match import HYPONYM, LABEL_SEMANTIC_MAX
+from inherit_sg.retrieval.match import LABEL_SEMANTIC_MAX
 from inherit_sg.retrieval.ordinals import place
 from inherit_sg.retrieval.parts import part_sim
 from inherit_sg.retrieval.placement import PlacementMeter
@@ -137,18 +137,6 @@ def _named_sim(cand: Scored) -> float:
         (t.sim for t in cand.terms.values() if t.polarity > 0 and t.kind in ("label", "function")),
         default=0.0,
     )
-
-
-def _tier_score(cand: Scored) -> float:
-    """The score with every kind of the named thing counted as the thing itself: "the
-    biggest of the tables" compares dining and coffee tables too (a kind-of match scores
-    ``HYPONYM`` on the label, a little below an exact one)."""
-    lift = sum(
-        t.weight * (1.0 - t.sim)
-        for t in cand.terms.values()
-        if t.kind in ("label", "function") and t.polarity > 0 and HYPONYM <= t.sim < 1.0
-    )
-    return cand.score + lift
 
 
 def _rank_key(cand: Scored) -> tuple[float, float, str]:
@@ -470,8 +458,8 @@ class Scorer:
         live = [c for c in out if c.h_floor]
         if not live:
             return
-        best = max(_tier_score(c) for c in live)
-        tier = [c for c in live if _tier_score(c) >= best - SUPERLATIVE_TIER]
+        best = max(c.score for c in live)
+        tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
         if con.measure in ("ordinal", "middle"):
             self._by_position(con, tier, landmarks, notes, viewing)
             return
