@@ -206,7 +206,8 @@ class Grammar(Cursor):
             ):
                 # gerund or verb-noun used as a noun: "viewing space", "a snack"
                 after_modifier = self.at("det", "adj", "colour", "material", "num", k=-1)
-                if self.nounish(1) or after_modifier or (run and not self.np_start(1)):
+                trailing = run and not self.np_start(1) and tok.tag != "VBG"  # not "… running"
+                if self.nounish(1) or after_modifier or trailing:
                     run.append(self.advance())
                     continue
             break

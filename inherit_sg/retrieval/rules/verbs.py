@@ -78,6 +78,8 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     stress = g.take_stress()
     while g.at("adv") and not g.at("prep"):
         g.advance()
+    while (particle := g.peek()) is not None and particle.tag == "RP" and g.np_start(1):
+        g.advance()  # "wipe down the kitchen island", "pick up the book"
     head: NP | None = None
     obj: NP | None = None
     nxt = g.peek()
@@ -116,7 +118,7 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
     if (
-        verb in lx.light_verbs
+        (verb in lx.light_verbs or _imperative(g, start))
         and obj is not None
         and obj.kind == OBJECT
         and obj.known
@@ -161,6 +163,16 @@ def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, l
 def lemma_of(tok: Tok) -> str:
     """The token's lemma (a multi-word token is its own lemma)."""
     return tok.lemma if tok.lemma and " " not in tok.text else tok.text
+
+
+def _imperative(g: Grammar, start: int) -> bool:
+    """Whether the verb at ``start`` opens a command ("draw the drapes", "wipe down the
+    kitchen island"): a base-form verb at the start of a clause."""
+    tok = g.toks[start]
+    if tok.tag != "VB":
+        return False
+    prev = g.toks[start - 1] if start > 0 else None
+    return prev is None or prev.has("comma", "and", "filler", "seeker") and not prev.has("to")
 
 
 def _past(g: Grammar, start: int) -> bool:
