@@ -3,7 +3,9 @@
 The set: generated two-floor houses at the generator's default 640×480 (seeds 201 and
 202, each with clean and with the generator's noisy perception) and the Matterport3D house of
 ``../shared/data/real/mp3d/`` rendered with ``inherit-sg sim render-house`` (skipped
-when absent). Each dataset is mapped from its frames by the benchmark itself, so the
+when absent); then the request sets measured by their own scripts: the parser on the
+development set (``bench/parse.py``) and human-written requests on the MP3D house
+(``bench/mp3d_requests.py``). Each dataset is mapped from its frames by the benchmark itself, so the
 mapping figures are measured too. Results go to ``bench/results/run_all/<name>.json``;
 the page gets tables and figures (``docs/img/bench_*.png``), including latency by map
 size from ``bench/results/retrieval.json``.
@@ -27,6 +29,8 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "bench" / "results" / "run_all"
 SCALE_JSON = ROOT / "bench" / "results" / "retrieval.json"
+PARSE_JSON = ROOT / "bench" / "results" / "parse.json"
+MP3D_REQUESTS_JSON = ROOT / "bench" / "results" / "mp3d_requests.json"
 DOCS = ROOT / "docs"
 MP3D_HOUSE = ROOT / ".." / "shared" / "data" / "real" / "mp3d" / "example_mp3d_scene.house"
 WIDTH, HEIGHT = 640, 480
@@ -124,9 +128,27 @@ def render(docs: list[dict[str, Any]]) -> Path:
         "`queries.jsonl` (`--max-queries`)."
     )
     rel = {k: str(v.relative_to(DOCS)) for k, v in images.items()}
+    sets = {
+        name: json.loads(path.read_text(encoding="utf-8"))
+        for name, path in (("parse", PARSE_JSON), ("mp3d", MP3D_REQUESTS_JSON))
+        if path.is_file()
+    }
     page = DOCS / "benchmarks.md"
-    page.write_text(render_page(docs, scale, rel, preamble), encoding="utf-8")
+    page.write_text(render_page(docs, scale, rel, preamble, sets), encoding="utf-8")
     return page
+
+
+def run_request_sets(work: Path) -> None:
+    """The parser's development set and the MP3D human-written requests (each script
+    writes its JSON under bench/results/)."""
+    print("== request parsing (bench/parse.py --dev)", flush=True)
+    subprocess.run([sys.executable, str(ROOT / "bench" / "parse.py"), "--dev"], check=True)
+    if MP3D_HOUSE.is_file():
+        print("== MP3D human-written requests (bench/mp3d_requests.py)", flush=True)
+        script = ROOT / "bench" / "mp3d_requests.py"
+        subprocess.run(
+            [sys.executable, str(script), "--work", str(work / "mp3d-requests")], check=True
+        )
 
 
 def main() -> None:
@@ -151,6 +173,7 @@ def main() -> None:
                 print(f"== {spec.name}: bench", flush=True)
                 out = run_one(spec, dataset, args)
                 print(f"== {spec.name}: {out} ({time.perf_counter() - t0:.0f} s)", flush=True)
+            run_request_sets(work)
     docs = load_docs()
     if not docs:
         sys.exit("no results in bench/results/run_all/ to report")

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from inherit_sg.benchmark import report
+from inherit_sg.benchmark import request_sets as request_sets_section
 from inherit_sg.benchmark.tables import table
 
 
@@ -35,9 +36,11 @@ def render_page(
     scale_rows: list[dict[str, Any]] | None,
     images: dict[str, str],
     preamble: str = "",
+    request_sets: dict[str, dict[str, Any]] | None = None,
 ) -> str:
     """Markdown of the benchmark page; ``images`` maps figure names ("accuracy",
-    "latency_scale", "storage") to paths relative to the page."""
+    "latency_scale", "storage") to paths relative to the page; ``request_sets`` holds the
+    results of ``bench/parse.py`` ("parse") and ``bench/mp3d_requests.py`` ("mp3d")."""
     parts = ["# Benchmarks", preamble.strip()]
     parts += ["## Datasets", datasets_section(docs)]
     parts += [
@@ -88,6 +91,24 @@ def render_page(
         "same requests with phrases cached.",
         report.latency_section(docs),
     ]
+    sets = request_sets or {}
+    if "parse" in sets:
+        parts += [
+            "## Request parsing",
+            "The offline parser (spaCy + vocabularies) on the development set: 690 requests "
+            "written the way people talk, annotated with their target and constraints "
+            "(`docs/dev_requests.md`); from `bench/results/parse.json` "
+            "(`python bench/parse.py --dev`). Latency without the result cache.",
+            request_sets_section.parse_section(sets["parse"]),
+        ]
+    if "mp3d" in sets:
+        parts += [
+            "## Human-written requests on the Matterport3D house",
+            "150 requests a person wrote for the real MP3D layout (`bench/data/"
+            "mp3d_requests.jsonl`), answered on the map built from its rendered walk; from "
+            "`bench/results/mp3d_requests.json` (`python bench/mp3d_requests.py`).",
+            request_sets_section.requests_section(sets["mp3d"]),
+        ]
     if scale_rows:
         parts += [
             "## Latency by map size",

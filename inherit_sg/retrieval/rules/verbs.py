@@ -172,7 +172,7 @@ def _imperative(g: Grammar, start: int) -> bool:
     if tok.tag != "VB":
         return False
     prev = g.toks[start - 1] if start > 0 else None
-    return prev is None or (prev.has("comma", "and", "filler", "seeker") and not prev.has("to"))
+    return prev is None or (prev.has("comma", "and", "filler") and not prev.has("to", "seeker"))
 
 
 def _past(g: Grammar, start: int) -> bool:
