@@ -4,8 +4,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from api.view_models import AreaItem, AreaPage, FloorItem, FloorPage, RoomItem, RoomPage
+from api.view_models import (
+    AreaItem,
+    AreaPage,
+    FloorItem,
+    FloorPage,
+    RoomItem,
+    RoomPage,
+    RoomTypeItem,
+)
 from inherit_sg.facade import MapService
+from inherit_sg.store.codec import room_types_from_json
 
 Filters = list[tuple[str, str, Any]]
 
@@ -98,12 +107,13 @@ def list_floors(service: MapService, *, label: str | None, limit: int, offset: i
 def list_rooms(
     service: MapService, *, floor: str | None, label: str | None, limit: int, offset: int
 ) -> RoomPage:
-    """A page of rooms ordered by id, filtered by floor id and label."""
+    """A page of rooms ordered by id, filtered by floor id and label, each with its
+    inferred types."""
     total, rows = page_of(
         service,
         "Room",
         "r",
-        "r.id, r.label, r.summary, r.position, r.floor_id, r.best_view",
+        "r.id, r.label, r.summary, r.position, r.floor_id, r.best_view, r.types",
         [("floor", "r.floor_id", floor), ("label", "lower(r.label)", label_filter(label))],
         limit,
         offset,
@@ -119,10 +129,11 @@ def list_rooms(
             position=position,
             floor_id=floor_id,
             best_view=best_view,
+            types=[RoomTypeItem(type=t, p=p) for t, p in room_types_from_json(types)],
             areas=areas.get(rid, 0),
             objects=objects.get(rid, 0),
         )
-        for rid, rlabel, summary, position, floor_id, best_view in rows
+        for rid, rlabel, summary, position, floor_id, best_view, types in rows
     ]
     return RoomPage(rooms=rooms, total=total, limit=limit, offset=offset)
 

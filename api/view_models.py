@@ -16,8 +16,15 @@ class FloorItem(BaseModel):
     objects: int = Field(description="Objects on this floor.")
 
 
+class RoomTypeItem(BaseModel):
+    """One inferred type of a room with its probability."""
+
+    type: str = Field(description="A room type of rooms.toml, e.g. 'tv room'.")
+    p: float = Field(description="Probability that the room is of this type.")
+
+
 class RoomItem(BaseModel):
-    """One room with its summary, parent floor and child counts."""
+    """One room with its summary, inferred types, parent floor and child counts."""
 
     id: str
     label: str
@@ -25,6 +32,11 @@ class RoomItem(BaseModel):
     position: list[float] | None
     floor_id: str | None
     best_view: str | None = Field(description="Keyframe id of the room's best viewpoint.")
+    types: list[RoomTypeItem] = Field(
+        default_factory=list,
+        description="The room's inferred types with their probabilities, best first (the "
+        "label is the best); empty when the map holds none (oracle and imported maps).",
+    )
     areas: int = Field(description="Functional areas in this room.")
     objects: int = Field(description="Objects in this room.")
 

@@ -54,6 +54,18 @@ def _unb64(text: str | None) -> bytes | None:
     return None if text is None else base64.b64decode(text)
 
 
+def _room_types(value: Any) -> tuple[tuple[str, float], ...]:
+    """A room record's ``types`` (``[[type, p], …]``; absent in files written before
+    rooms had them) as ``(type, probability)`` pairs."""
+    if value is None:
+        return ()
+    if not isinstance(value, list) or not all(
+        isinstance(v, list | tuple) and len(v) == 2 and isinstance(v[0], str) for v in value
+    ):
+        raise ValueError("'types' must be a list of [type, probability] pairs")
+    return tuple((str(t), float(p)) for t, p in value)
+
+
 def node_to_record(node: Node) -> dict[str, Any]:
     """JSON-able dict of any node; ``layer`` names its table."""
     rec: dict[str, Any] = {"layer": node.layer.name}
@@ -68,6 +80,8 @@ def node_to_record(node: Node) -> dict[str, Any]:
             rec[name] = _b64(value.to_bytes())
         elif isinstance(value, ObjectStatus):
             rec[name] = value.value
+        elif name == "types" and isinstance(node, RoomNode):
+            rec[name] = [[str(t), float(p)] for t, p in value]
         elif isinstance(value, tuple):
             rec[name] = list(value)
         else:
@@ -92,6 +106,8 @@ def node_from_record(rec: dict[str, Any]) -> Node:
             fields["mask"] = RoomMask.from_bytes(_unb64(fields["mask"]) or b"")
         if "status" in fields:
             fields["status"] = ObjectStatus(fields["status"])
+        if layer is Layer.ROOM:
+            fields["types"] = _room_types(fields.get("types"))
         node: Node = _NODE_CLASSES[layer](**fields)
         return node
     except (KeyError, TypeError, ValueError) as exc:

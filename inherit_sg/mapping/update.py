@@ -19,7 +19,13 @@ from inherit_sg.mapping.node_text import node_text
 from inherit_sg.mapping.object_map import ObjectMap
 from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier, RelationVerifier
 from inherit_sg.mapping.relations import Relation, infer_relations
-from inherit_sg.mapping.room_semantics import infer_room_type, summarise_room
+from inherit_sg.mapping.room_semantics import (
+    infer_room_types,
+    kept_types,
+    room_label,
+    room_shape,
+    summarise_room,
+)
 from inherit_sg.mapping.semantic import LabelEmbedder
 from inherit_sg.model import (
     AreaNode,
@@ -94,6 +100,14 @@ class HierarchyBuilder:
         self.keyframe_view = keyframe_view
         self._embedded_text: dict[str, str] = {}
 
+    @staticmethod
+    def _label_room(room: RoomNode, labels: list[str]) -> None:
+        """Infer the room's type distribution from its objects' labels and its mask's
+        size and shape; the label is the best type."""
+        types = infer_room_types(labels, shape=room_shape(room.mask))
+        room.types = kept_types(types)
+        room.label = room_label(types)
+
     def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
         """Closest room of the object's floor by room centre (objects on thresholds,
         in doorways or outside the observed free space)."""
@@ -149,7 +163,7 @@ class HierarchyBuilder:
             room = rooms[room_id]
             room_num = room_id.partition(":")[2]
             summaries = []
-            room.label = infer_room_type([o.label for o in members])
+            self._label_room(room, [o.label for o in members])
             for k, cluster in enumerate(cluster_objects(members)):
                 label, summary = self.area_labeller.label([o.label for o in cluster], room.label)
                 pts = np.array([o.position for o in cluster], dtype=float)
@@ -176,7 +190,7 @@ class HierarchyBuilder:
                 floor = (
                     graph.get(room.floor_id) if room.floor_id and room.floor_id in graph else None
                 )
-                room.label = "room" if room.label in ("", "room") else room.label
+                self._label_room(room, [])
                 room.summary = summarise_room(room.label, getattr(floor, "level", None), [], [])
                 graph.touch(room_id)
         stats.rooms = len(rooms)

@@ -101,7 +101,8 @@ class FloorNode:
 
 @dataclass
 class RoomNode:
-    """L1: a room with its VLM/offline summary, 2D mask and best viewpoint."""
+    """L1: a room with its VLM/offline summary, 2D mask, best viewpoint and the
+    distribution of its inferred types (``types``: ``(type, probability)`` pairs)."""
 
     id: NodeId
     label: str
@@ -111,6 +112,9 @@ class RoomNode:
     mask: RoomMask | None = None
     best_view: str | None = None  # keyframe id
     text_embedding: Vector | None = None
+    # inferred room types with their probabilities, best first (the label is the best);
+    # empty when not inferred (oracle and imported maps)
+    types: tuple[tuple[str, float], ...] = ()
     layer: Layer = field(default=Layer.ROOM, init=False, repr=False)
 
 

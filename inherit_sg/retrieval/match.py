@@ -9,8 +9,10 @@ Object words are matched in this order, and the reason says which step matched: 
 same word (by lemma), a synonym in the object vocabulary ("couch" and "sofa" are both
 ``sofa``; "bedside table" is a ``nightstand``), a kind of the word asked for ("dining
 table" for "table", from the vocabulary's ``is_a`` or the compound's head noun), then
-text-embedding similarity, graded so that only close phrases count. Rooms match by type
-(aliases included), then by embedding similarity of their labels.
+text-embedding similarity, graded so that only close phrases count. Rooms match by their
+label's type, their inferred alternatives (graded by probability), the request's aliases
+and related types, then by embedding similarity of their labels and alternatives
+(:mod:`inherit_sg.retrieval.room_match`).
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from inherit_sg.retrieval.constraints import (
     LabelConstraint,
     RoomConstraint,
 )
+from inherit_sg.retrieval.room_match import match_rooms
 from inherit_sg.retrieval.similarity import (
     LABEL_COS_HI,
     LABEL_COS_LO,
@@ -148,16 +151,14 @@ def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimi
 
 
 def _rooms(
-    words: list[str], rtype: str | None, snap: MapSnapshot, sim: PhraseSimilarity
+    words: list[str],
+    rtype: str | None,
+    snap: MapSnapshot,
+    sim: PhraseSimilarity,
+    negated: bool = False,
 ) -> Matches:
-    out: Matches = {}
-    for rid, have in snap.room_types.items():
-        if rtype is not None and have == rtype:
-            out[rid] = (1.0, f"room {rid} is a {rtype}")
-    if not out:  # no room of that type: rooms whose label resembles the words
-        ids = sorted(snap.rooms)
-        _semantic(out, words, ids, [snap.rooms[r].label.lower() for r in ids], sim, 1.0)
-    return out
+    """Rooms by label, inferred alternatives, aliases, then embeddings (room_match)."""
+    return match_rooms(words, rtype, snap, sim, negated=negated)
 
 
 def _areas(words: list[str], snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
@@ -180,9 +181,8 @@ def resolve_matches(
             return _object_labels(con, snap, sim)
         words = [_clean(w) for w in (*con.labels, con.noun) if w]
         if layer == "room":
-            return _rooms(
-                words, next((room_type(w) for w in words if room_type(w)), None), snap, sim
-            )
+            rtype = next((room_type(w) for w in words if room_type(w)), None)
+            return _rooms(words, rtype, snap, sim, con.negated)
         if layer == "area":
             return _areas(words, snap, sim)
         return None
@@ -190,7 +190,7 @@ def resolve_matches(
         return _function_labels(con, snap, sim) if layer == "object" else None
     if isinstance(con, RoomConstraint):
         words = [_clean(w) for w in (con.type or "", con.name) if w]
-        return _rooms(words, con.type, snap, sim)
+        return _rooms(words, con.type, snap, sim, con.negated)
     if isinstance(con, AreaConstraint):
         return _areas([con.label], snap, sim)
     return None

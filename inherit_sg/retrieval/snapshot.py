@@ -54,6 +54,16 @@ def canonical_labels(label: str) -> tuple[str, ...]:
     return map_label_kinds(label)
 
 
+def _alternatives(room: RoomNode) -> tuple[tuple[str, float], ...]:
+    """A room's inferred types named by their canonical type (a map written by another
+    labeller may use aliases), the first of each type kept, best first."""
+    out: dict[str, float] = {}
+    for name, p in room.types:
+        rtype = room_type(name) or name.strip().lower()
+        out.setdefault(rtype, float(p))
+    return tuple(sorted(out.items(), key=lambda kv: -kv[1]))
+
+
 @dataclass
 class MapSnapshot:
     """Nodes, hierarchy, relations and geometry of one map version."""
@@ -69,7 +79,11 @@ class MapSnapshot:
     area_of: dict[str, str | None] = field(default_factory=dict)
     floor_of: dict[str, str | None] = field(default_factory=dict)
     canon: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    # room id → the type its label names (None: the label names no type)
     room_types: dict[str, str | None] = field(default_factory=dict)
+    # room id → its inferred types with probabilities, best first, each named by its
+    # canonical type (empty when the map holds none: oracle and imported maps)
+    room_alternatives: dict[str, tuple[tuple[str, float], ...]] = field(default_factory=dict)
     relations: dict[str, dict[str, set[str]]] = field(default_factory=dict)
     neighbours: dict[str, set[str]] = field(default_factory=dict)
     adjacent: dict[str, set[str]] = field(default_factory=dict)
@@ -186,6 +200,7 @@ def build_snapshot(
     for rid, room in snap.rooms.items():
         snap.floor_of[rid] = room.floor_id or graph.parent(rid)
         snap.room_types[rid] = room_type(room.label.lower()) if room.label else None
+        snap.room_alternatives[rid] = _alternatives(room)
         snap.room_of[rid] = rid
     for aid in snap.areas:
         parent_room = area_room.get(aid)

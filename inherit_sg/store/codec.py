@@ -44,6 +44,7 @@ _COLUMNS: dict[str, dict[str, str]] = {
         "summary": "str",
         "mask": "bytes",
         "best_view": "str",
+        "types": "str",
     },
     "Area": {"id": "str", "label": "str", "room_id": "str", "position": "vec3", "summary": "str"},
     "Object": {
@@ -177,6 +178,7 @@ def node_row(node: Node) -> dict[str, Any]:
             "summary": node.summary,
             "mask": node.mask.to_bytes() if node.mask is not None else None,
             "best_view": node.best_view,
+            "types": room_types_json(node.types),
         }
     if isinstance(node, AreaNode):
         return {
@@ -237,7 +239,26 @@ def _room_from_row(r: dict[str, Any]) -> RoomNode:
         summary=r["summary"] or "",
         mask=RoomMask.from_bytes(r["mask"]) if r["mask"] else None,
         best_view=r["best_view"],
+        types=room_types_from_json(r.get("types")),
     )
+
+
+def room_types_json(types: Sequence[tuple[str, float]]) -> str:
+    """A Room's inferred types as stored in its ``types`` column: JSON
+    ``[[type, probability], …]``, best first."""
+    return json.dumps([[str(t), float(p)] for t, p in types])
+
+
+def room_types_from_json(text: str | None) -> tuple[tuple[str, float], ...]:
+    """Inverse of :func:`room_types_json`; NULL (a room written before schema 2) and
+    unreadable text give no types."""
+    if not text:
+        return ()
+    try:
+        value = json.loads(text)
+        return tuple((str(t), float(p)) for t, p in value)
+    except (ValueError, TypeError):
+        return ()
 
 
 def _area_from_row(r: dict[str, Any]) -> AreaNode:

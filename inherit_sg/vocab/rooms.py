@@ -1,14 +1,18 @@
 """Room types (``rooms.toml``): their names and aliases, the objects that are evidence
-for each type, and the words that name floors in room summaries.
+for or against each type, the size and shape cues and priors the mapper weighs with
+them, related types, fixtures, and the words that name floors in room summaries.
 
-The mapper names rooms from :func:`evidence`; the request parser and retrieval read
-room names with :func:`room_words` and :func:`room_type`.
+The mapper infers a room's types from :func:`room_type_table` and :func:`fixtures`
+(:mod:`inherit_sg.mapping.room_semantics`); the request parser and retrieval read room
+names with :func:`room_words` and :func:`room_type`, and :func:`related` for types people
+name interchangeably.
 """
 
 from __future__ import annotations
 
+import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
 
@@ -17,15 +21,36 @@ from inherit_sg.vocab import VocabularyError, load_table, string_list
 _FILE = "rooms.toml"
 # Trailing room numbers: "bedroom 2", "bedroom #2", "office 2b".
 _NUMBER = re.compile(r"#?\d+[a-z]?")
+_FIELDS = frozenset({"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence"})
 
 
 @dataclass(frozen=True)
 class RoomType:
-    """One room type: its name, aliases (file order) and evidence (label → weight)."""
+    """One room type as ``rooms.toml`` defines it.
+
+    ``evidence`` maps object kinds to weights (negative: evidence against the type);
+    ``prior`` is the type's relative frequency in (0, 1]; ``base`` its score before any
+    evidence; ``area`` its typical floor area range in m² (None: no size cue);
+    ``narrow`` and ``bare`` the scores added when a room is long and narrow or holds
+    only fixtures; ``related`` the types people name it by, with a similarity.
+    """
 
     name: str
     aliases: tuple[str, ...]
     evidence: dict[str, float]
+    prior: float = 1.0
+    base: float = 0.0
+    area: tuple[float, float] | None = None
+    narrow: float = 0.0
+    bare: float = 0.0
+    related: dict[str, float] = field(default_factory=dict)
+
+
+def _number(entry: dict[str, Any], key: str, where: str, default: float) -> float:
+    value = entry.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise VocabularyError(f"{where}: {key!r} must be a number")
+    return float(value)
 
 
 def _evidence(entry: dict[str, Any], where: str) -> dict[str, float]:
@@ -34,12 +59,69 @@ def _evidence(entry: dict[str, Any], where: str) -> dict[str, float]:
         raise VocabularyError(f"{where}: 'evidence' must be a table of label = weight")
     out: dict[str, float] = {}
     for label, weight in table.items():
-        if isinstance(weight, bool) or not isinstance(weight, int | float) or weight <= 0:
+        if (
+            isinstance(weight, bool)
+            or not isinstance(weight, int | float)
+            or not math.isfinite(weight)
+            or weight == 0
+        ):
             raise VocabularyError(
-                f"{where}: 'evidence' weight of {label!r} must be a positive number"
+                f"{where}: 'evidence' weight of {label!r} must be a non-zero number"
             )
-        out[label.strip().lower()] = float(weight)
+        out[" ".join(label.lower().split())] = float(weight)
     return out
+
+
+def _area(entry: dict[str, Any], where: str) -> tuple[float, float] | None:
+    value = entry.get("area")
+    if value is None:
+        return None
+    ok = (
+        isinstance(value, list)
+        and len(value) == 2
+        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in value)
+        and 0 < value[0] < value[1]
+    )
+    if not ok:
+        raise VocabularyError(f"{where}: 'area' must be [smallest, largest] m², 0 < smallest")
+    return float(value[0]), float(value[1])
+
+
+def _related(entry: dict[str, Any], where: str) -> dict[str, float]:
+    table = entry.get("related", {})
+    if not isinstance(table, dict):
+        raise VocabularyError(f"{where}: 'related' must be a table of type = similarity")
+    out: dict[str, float] = {}
+    for name, sim in table.items():
+        if isinstance(sim, bool) or not isinstance(sim, int | float) or not 0 < sim <= 1:
+            raise VocabularyError(
+                f"{where}: 'related' similarity of {name!r} must be a number in (0, 1]"
+            )
+        out[name.strip().lower()] = float(sim)
+    return out
+
+
+def _room_type(name: str, entry: Any) -> RoomType:
+    where = f"{_FILE} [types.{name}]"
+    if not isinstance(entry, dict):
+        raise VocabularyError(f"{where} must be a table")
+    unknown = sorted(set(entry) - _FIELDS)
+    if unknown:
+        raise VocabularyError(f"{where}: unknown field {unknown[0]!r}")
+    prior = _number(entry, "prior", where, 1.0)
+    if not 0 < prior <= 1:
+        raise VocabularyError(f"{where}: 'prior' must be in (0, 1]")
+    return RoomType(
+        name=name.strip().lower(),
+        aliases=string_list(entry, "aliases", where),
+        evidence=_evidence(entry, where),
+        prior=prior,
+        base=_number(entry, "base", where, 0.0),
+        area=_area(entry, where),
+        narrow=_number(entry, "narrow", where, 0.0),
+        bare=_number(entry, "bare", where, 0.0),
+        related=_related(entry, where),
+    )
 
 
 @lru_cache(maxsize=1)
@@ -48,19 +130,15 @@ def _types() -> tuple[RoomType, ...]:
     table = data.get("types")
     if not isinstance(table, dict) or not table:
         raise VocabularyError(f"{_FILE}: needs at least one [types.<name>] table")
-    out = []
-    for name, entry in table.items():
-        where = f"{_FILE} [types.{name}]"
-        if not isinstance(entry, dict):
-            raise VocabularyError(f"{where} must be a table")
-        out.append(
-            RoomType(
-                name=name.strip().lower(),
-                aliases=string_list(entry, "aliases", where),
-                evidence=_evidence(entry, where),
-            )
-        )
-    return tuple(out)
+    out = tuple(_room_type(name, entry) for name, entry in table.items())
+    names = {t.name for t in out}
+    for t in out:
+        for other in t.related:
+            if other not in names or other == t.name:
+                raise VocabularyError(
+                    f"{_FILE} [types.{t.name}]: 'related' names {other!r}, not another type"
+                )
+    return out
 
 
 def room_types() -> tuple[str, ...]:
@@ -68,19 +146,46 @@ def room_types() -> tuple[str, ...]:
     return tuple(t.name for t in _types())
 
 
+@lru_cache(maxsize=1)
+def room_type_table() -> dict[str, RoomType]:
+    """Room type name → its :class:`RoomType`, in file order."""
+    return {t.name: t for t in _types()}
+
+
 def aliases(rtype: str) -> tuple[str, ...]:
     """The aliases of room type ``rtype`` (file order); empty for an unknown type."""
-    for t in _types():
-        if t.name == rtype:
-            return t.aliases
-    return ()
+    found = room_type_table().get(rtype)
+    return found.aliases if found is not None else ()
 
 
 @lru_cache(maxsize=1)
 def evidence() -> dict[str, dict[str, float]]:
-    """Room type → {object label: evidence weight}, for the types with evidence, in file
-    order (the order breaks ties between equally supported types)."""
+    """Room type → {object kind: evidence weight}, for the types with evidence, in file
+    order (the order breaks ties between equally supported types). Negative weights are
+    evidence against the type."""
     return {t.name: dict(t.evidence) for t in _types() if t.evidence}
+
+
+def related(rtype: str) -> dict[str, float]:
+    """Types people name ``rtype`` by (or ``rtype`` by them), with a similarity in
+    (0, 1]: the larger of the two directions' values. Empty for an unknown type."""
+    return dict(_related_table().get(rtype, {}))
+
+
+@lru_cache(maxsize=1)
+def _related_table() -> dict[str, dict[str, float]]:
+    out: dict[str, dict[str, float]] = {t.name: {} for t in _types()}
+    for t in _types():
+        for other, sim in t.related.items():
+            out[t.name][other] = max(out[t.name].get(other, 0.0), sim)
+            out[other][t.name] = max(out[other].get(t.name, 0.0), sim)
+    return out
+
+
+@lru_cache(maxsize=1)
+def fixtures() -> frozenset[str]:
+    """Labels that say nothing about a room's type (doors, windows, lights)."""
+    return frozenset(string_list(load_table("rooms"), "fixtures", _FILE))
 
 
 @lru_cache(maxsize=1)
@@ -129,5 +234,6 @@ def level_words() -> tuple[str, ...]:
 
 def clear_caches() -> None:
     """Forget the parsed tables (after the files or ``DATA_DIR`` changed; tests)."""
-    for fn in (_types, evidence, room_words, level_words):
+    for fn in (_types, room_type_table, evidence, _related_table, fixtures, room_words):
         fn.cache_clear()
+    level_words.cache_clear()

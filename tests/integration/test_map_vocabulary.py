@@ -64,7 +64,7 @@ def test_later_session_with_other_vocabulary_warns_and_records_it(
     card["label_space"] = [*card["label_space"], "zeppelin"]  # a label from earlier words
     (work / "map.json").write_text(json.dumps(card), encoding="utf-8")
     other: dict[str, Any] = {
-        "versions": {**old["vocabulary"]["versions"], "rooms": 2},
+        "versions": {**old["vocabulary"]["versions"], "rooms": 99},
         "digest": "0123abcd0123abcd",
     }
     monkeypatch.setattr(mapdir, "vocabulary_info", lambda: other)
@@ -106,7 +106,7 @@ def test_info_shows_vocabulary_and_label_space(built: Path, tmp_path: Path) -> N
     shown = runner.invoke(app, ["info", "--map", str(built)])
     assert shown.exit_code == 0, shown.output
     digest = _card(built)["vocabulary"]["digest"]
-    assert f"vocabulary: {digest} (lexicon v1, " in shown.output and "rooms v1" in shown.output
+    assert f"vocabulary: {digest} (lexicon v1, " in shown.output and "rooms v2" in shown.output
     assert "label space: " in shown.output and "labels:" in shown.output
     as_json = json.loads(runner.invoke(app, ["info", "--map", str(built), "--json"]).output)
     assert as_json["label_space"] == _card(built)["label_space"]

@@ -16,14 +16,18 @@ from inherit_sg.store.kuzu_util import rows, table_names
 DIMS = {"visual_dim": 16, "text_dim": 8, "image_feature_dim": 4}
 
 
+LATEST = mig.latest_version()  # of the packaged migrations
+NEXT = LATEST + 1
+
+
 def schema_copy(tmp_path: Path, extra: str | None = None) -> Path:
-    """The packaged migrations, plus an optional 0002 step."""
+    """The packaged migrations, plus an optional step after them (version NEXT)."""
     folder = tmp_path / "schema"
     folder.mkdir()
     for file in mig.schema_dir().glob("*.cypher"):
         shutil.copy(file, folder / file.name)
     if extra is not None:
-        (folder / "0002_notes.cypher").write_text(extra, encoding="utf-8")
+        (folder / f"{NEXT:04d}_notes.cypher").write_text(extra, encoding="utf-8")
     return folder
 
 
@@ -40,11 +44,14 @@ def test_apply_is_recorded_and_idempotent(tmp_path: Path) -> None:
     db = kuzu.Database(str(tmp_path / "g.kuzu"))
     conn = kuzu.Connection(db)
     assert mig.recorded_version(conn) == 0
-    assert mig.apply_migrations(conn, DIMS, tmp_path) == [1]
+    assert mig.apply_migrations(conn, DIMS, tmp_path) == list(range(1, LATEST + 1))
     assert mig.apply_migrations(conn, DIMS, tmp_path) == []
-    assert mig.recorded_version(conn) == mig.latest_version() == 1
-    recorded = rows(conn, "MATCH (m:_Migration) RETURN m.version, m.name, m.applied_at")
+    assert mig.recorded_version(conn) == LATEST >= 2
+    recorded = rows(
+        conn, "MATCH (m:_Migration) RETURN m.version, m.name, m.applied_at ORDER BY m.version"
+    )
     assert recorded[0][:2] == [1, "init"] and recorded[0][2]
+    assert recorded[1][:2] == [2, "room_types"]
     assert {"Floor", "Room", "Area", "Object", "Keyframe", "Session", "RELATION"} <= table_names(
         conn
     )
@@ -61,14 +68,14 @@ def test_older_database_is_upgraded(tmp_path: Path) -> None:
     mig.apply_migrations(conn, DIMS, tmp_path, mig.load_migrations(folder)[:1])
     conn.execute("CREATE (:Object {id: 'obj:1', label: 'cup'})")
     applied = mig.apply_migrations(conn, DIMS, tmp_path, mig.load_migrations(folder))
-    assert applied == [2] and mig.recorded_version(conn) == 2
+    assert applied == list(range(2, NEXT + 1)) and mig.recorded_version(conn) == NEXT
     assert rows(conn, "MATCH (o:Object) RETURN o.id, o.confidence") == [["obj:1", 1.0]]
     conn.execute("CREATE (:Note {id: 'n1', label: '', text: 'remember the milk'})")
     hits = rows(conn, "CALL QUERY_FTS_INDEX('Note', 'note_fts', 'milk') RETURN node.id")
     assert hits == [["n1"]]
     assert mig.apply_migrations(conn, DIMS, tmp_path, mig.load_migrations(folder)) == []
-    conn.execute("MATCH (m:_Migration {version: 2}) DELETE m")  # as if cut short by a crash
-    assert mig.apply_migrations(conn, DIMS, tmp_path, mig.load_migrations(folder)) == [2]
+    conn.execute(f"MATCH (m:_Migration {{version: {NEXT}}}) DELETE m")  # as if cut short
+    assert mig.apply_migrations(conn, DIMS, tmp_path, mig.load_migrations(folder)) == [NEXT]
     assert rows(conn, "CALL QUERY_FTS_INDEX('Note', 'note_fts', 'milk') RETURN count(*)") == [[1]]
     conn.close()
     db.close()
@@ -91,14 +98,15 @@ def test_store_upgrades_on_writable_open_only(
     MapStore.create(path).close()
     folder = schema_copy(tmp_path, NOTES)
     monkeypatch.setattr(mig, "schema_dir", lambda: folder)
-    with pytest.raises(SchemaVersionError, match=r"version 1, older than version 2.*writing"):
+    older = rf"version {LATEST}, older than version {NEXT}.*writing"
+    with pytest.raises(SchemaVersionError, match=older):
         MapStore.open(path)
     with MapStore.open(path, write=True) as store:
-        assert store.info.schema_version == 2
-        assert store.cypher("MATCH (m:_Migration) RETURN count(*)").rows == [[2]]
+        assert store.info.schema_version == NEXT
+        assert store.cypher("MATCH (m:_Migration) RETURN count(*)").rows == [[NEXT]]
     with MapStore.open(path) as store:
         assert store.cypher("CALL TABLE_INFO('Note') RETURN count(*)").rows == [[3]]
-    assert '"schema_version": 2' in (path / "map.json").read_text()
+    assert f'"schema_version": {NEXT}' in (path / "map.json").read_text()
 
 
 def test_newer_map_is_refused(tmp_path: Path) -> None:

@@ -75,7 +75,7 @@ def test_clusters_and_area_labels() -> None:
 
 def test_room_types_and_summary() -> None:
     assert infer_room_type(["bed", "nightstand"]) == "bedroom"
-    assert infer_room_type(["toilet", "sink"]) == "bathroom"
+    assert infer_room_type(["toilet", "sink"]) == "toilet"  # no bath or shower: a toilet room
     assert infer_room_type(["stove", "refrigerator", "table"]) == "kitchen"
     assert infer_room_type(["door", "painting"]) == "hallway"
     assert infer_room_type(["chair"]) == "room"

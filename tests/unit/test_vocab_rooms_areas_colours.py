@@ -13,7 +13,7 @@ import inherit_sg.vocab as vocab
 from inherit_sg.mapping.areas import label_area
 from inherit_sg.mapping.room_semantics import floor_phrase, infer_room_type
 from inherit_sg.perception import colour_names as perception_colours
-from inherit_sg.vocab import VocabularyError, areas, colours, rooms
+from inherit_sg.vocab import VocabularyError, areas, colours, objects, rooms
 
 
 def _clear() -> None:
@@ -37,33 +37,54 @@ def data_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
 
 
 # ------------------------------------------------------------------ rooms
-def test_room_types_keep_todays_set_and_evidence() -> None:
+MP3D_TYPES = {
+    "bathroom", "bedroom", "closet", "dining room", "entryway", "family room", "garage",
+    "hallway", "library", "laundry room", "kitchen", "living room", "meeting room", "office",
+    "porch", "rec room", "stairs", "toilet", "utility room", "tv room", "gym", "balcony",
+    "bar", "classroom", "spa", "other room",
+}  # fmt: skip
+
+
+def test_room_types_are_the_matterport_categories() -> None:
     types = rooms.room_types()
-    assert types[:6] == ("bedroom", "bathroom", "kitchen", "living room", "dining room", "office")
-    assert {"hallway", "garage", "closet", "classroom"} <= set(types) and len(types) == 21
+    assert types[:5] == ("bedroom", "bathroom", "toilet", "kitchen", "living room")
+    assert set(types) == MP3D_TYPES and len(types) == 26
     ev = rooms.evidence()
-    assert list(ev) == [
-        "bedroom",
-        "bathroom",
-        "kitchen",
-        "living room",
-        "dining room",
-        "office",
-        "laundry room",
-        "garage",
-    ]
-    assert ev["bedroom"] == {"bed": 3.0, "nightstand": 1.5, "wardrobe": 1.0, "dresser": 1.0}
-    assert ev["garage"]["car"] == 4.0 and ev["dining room"] == {"dining table": 3.0}
+    assert list(ev) == list(types)  # every type has evidence
+    assert ev["bedroom"]["bed"] == 3.0 and ev["garage"]["car"] == 4.0
+    assert ev["toilet"]["bathtub"] < 0 < ev["bathroom"]["bathtub"]  # evidence against
+    table = rooms.room_type_table()
+    assert table["toilet"].area is not None and table["toilet"].area[1] <= 5
+    assert table["hallway"].narrow > 0 and table["hallway"].bare > 0
+    assert table["other room"].base > 0 and 0 < table["classroom"].prior < 1
+    assert {"door", "window", "light"} <= rooms.fixtures()
     assert rooms.level_words() == ("ground", "second", "third", "fourth", "fifth")
+
+
+def test_evidence_names_object_kinds() -> None:
+    for rtype, weights in rooms.evidence().items():
+        for label in weights:
+            assert objects.canonical_label(label) == label, (rtype, label)
+
+
+def test_related_types_are_symmetric() -> None:
+    assert rooms.related("laundry room")["utility room"] == 0.8
+    assert rooms.related("utility room")["laundry room"] == 0.8
+    assert (
+        rooms.related("living room")["family room"] == rooms.related("family room")["living room"]
+    )
+    assert rooms.related("no such room") == {}
 
 
 def test_aliases_and_room_words() -> None:
     assert "guest room" in rooms.aliases("bedroom")
-    assert {"den", "tv room", "family room"} <= set(rooms.aliases("living room"))
+    assert {"den", "lounge"} <= set(rooms.aliases("family room"))
+    assert {"media room", "home theater"} <= set(rooms.aliases("tv room"))
     assert rooms.aliases("no such room") == ()
     words = rooms.room_words()
-    assert words["bedroom"] == "bedroom" and words["foyer"] == "hallway"
-    assert words["powder room"] == "bathroom" and words["study"] == "office"
+    assert words["bedroom"] == "bedroom" and words["foyer"] == "entryway"
+    assert words["powder room"] == "toilet" and words["wc"] == "toilet"
+    assert words["study"] == "office" and words["ensuite"] == "bathroom"
     assert all(words[t] == t for t in rooms.room_types())
 
 
@@ -76,15 +97,26 @@ def test_aliases_and_room_words() -> None:
         ("bedroom 2", "bedroom"),
         ("bedroom #3", "bedroom"),
         ("upstairs guest bathroom", "bathroom"),
-        ("half bath", "bathroom"),
+        ("master bath", "bathroom"),
+        ("half bath", "toilet"),
+        ("WC", "toilet"),
         ("ensuite", "bathroom"),
-        ("den", "living room"),
-        ("the tv room", "living room"),
-        ("family room 1", "living room"),
-        ("foyer", "hallway"),
+        ("den", "family room"),
+        ("the tv room", "tv room"),
+        ("family room 1", "family room"),
+        ("sitting room", "living room"),
+        ("foyer", "entryway"),
+        ("lobby", "entryway"),
+        ("corridor", "hallway"),
         ("dining hall", "dining room"),  # the longest tail wins over "hall"
         ("walk-in closet", "closet"),
         ("big storage closet", "closet"),
+        ("mudroom", "laundry room"),
+        ("tool room", "utility room"),
+        ("conference room", "meeting room"),
+        ("game room", "rec room"),
+        ("terrace", "porch"),
+        ("sauna", "spa"),
         ("study", "office"),
         ("room", None),
         ("room 4", None),
@@ -96,9 +128,10 @@ def test_room_type(phrase: str, rtype: str | None) -> None:
     assert rooms.room_type(phrase) == rtype
 
 
-def test_room_labels_are_unchanged() -> None:
+def test_room_labels() -> None:
     assert infer_room_type(["bed", "nightstand", "lamp"]) == "bedroom"
-    assert infer_room_type(["toilet", "sink"]) == "bathroom"
+    assert infer_room_type(["toilet", "sink"]) == "toilet"  # no bath or shower
+    assert infer_room_type(["toilet", "sink", "bathtub"]) == "bathroom"
     assert infer_room_type(["sofa", "tv", "coffee table"]) == "living room"
     assert infer_room_type(["car"]) == "garage"
     assert infer_room_type(["door", "painting"]) == "hallway"
@@ -107,18 +140,29 @@ def test_room_labels_are_unchanged() -> None:
 
 
 # ------------------------------------------------------------------ areas
-def test_area_rules_keep_todays_content_and_order() -> None:
-    rules = areas.area_rules()
-    assert list(rules)[:3] == ["sleeping area", "dining area", "cooking area"]
-    assert list(rules)[-1] == "entrance area" and len(rules) == 15
-    assert rules["sleeping area"] == (
-        frozenset({"bed"}),
-        frozenset({"nightstand", "bedside table", "table lamp", "pillow"}),
-    )
-    assert rules["parking area"] == (frozenset({"car"}), frozenset())
+def test_area_rules_cover_real_rooms() -> None:
+    rules = areas.area_rules_as_written()
+    assert list(rules)[:3] == ["sleeping area", "changing area", "dining area"]
+    assert list(rules)[-1] == "entrance area" and len(rules) >= 30
+    assert {"bar area", "coat area", "laundry area", "vanity area", "reading corner"} <= set(rules)
+    assert {"play area", "workout area"} <= set(rules)
+    assert rules["parking area"] == (("car", "motorcycle"), ("bicycle", "garage door", "scooter"))
     assert areas.area_labels() == tuple(rules)
+    for label, (anchors, support) in rules.items():
+        for kind in (*anchors, *support):
+            assert objects.canonical_label(kind) == kind, (label, kind)
+
+
+def test_area_rules_match_synonyms() -> None:
+    anchors, support = areas.area_rules()["sleeping area"]
+    assert {"bed", "crib"} <= anchors and {"nightstand", "bedside table"} <= support
     assert label_area(["bed", "nightstand"]) == "sleeping area"
+    assert label_area(["bedside table", "bed"]) == "sleeping area"
+    assert label_area(["couch", "coffee table", "television"]) == "tv area"
     assert label_area(["table", "chair", "chair"]) == "meeting area"
+    assert label_area(["coat rack", "bench", "shoe"]) == "coat area"
+    assert label_area(["vanity", "sink", "mirror"]) == "vanity area"
+    assert label_area(["treadmill", "dumbbell"]) == "workout area"
     assert label_area(["plant"]) == "plant area"
 
 
@@ -161,13 +205,28 @@ def test_alias_naming_two_types_is_refused(data_dir: Path) -> None:
 
 
 def test_aliases_must_be_strings(data_dir: Path) -> None:
-    _edit(data_dir / "rooms.toml", 'aliases = ["larder"]', "aliases = [3]")
-    with pytest.raises(VocabularyError, match=r"rooms\.toml \[types\.pantry\].*'aliases'"):
+    _edit(data_dir / "rooms.toml", 'aliases = ["juliet balcony", "loggia"]', "aliases = [3]")
+    with pytest.raises(VocabularyError, match=r"rooms\.toml \[types\.balcony\].*'aliases'"):
+        rooms.room_types()
+
+
+def test_bad_size_and_related_are_refused(data_dir: Path) -> None:
+    _edit(data_dir / "rooms.toml", "area = [0.8, 5]", "area = [5, 0.8]")
+    with pytest.raises(VocabularyError, match=r"\[types\.toilet\].*'area'"):
+        rooms.room_type_table()
+    _edit(data_dir / "rooms.toml", "area = [5, 0.8]", "area = [0.8, 5]")
+    _edit(data_dir / "rooms.toml", "related = { bathroom = 0.8 }", "related = { atrium = 0.8 }")
+    _clear()
+    with pytest.raises(VocabularyError, match=r"\[types\.toilet\].*'related'.*atrium"):
+        rooms.room_type_table()
+    _edit(data_dir / "rooms.toml", "related = { atrium = 0.8 }", "colour = 'white'")
+    _clear()
+    with pytest.raises(VocabularyError, match=r"\[types\.toilet\].*unknown field 'colour'"):
         rooms.room_types()
 
 
 def test_area_without_anchors_is_refused(data_dir: Path) -> None:
-    _edit(data_dir / "areas.toml", 'anchors = ["car"]', "anchors = []")
+    _edit(data_dir / "areas.toml", 'anchors = ["car", "motorcycle"]', "anchors = []")
     with pytest.raises(VocabularyError, match=r'areas\.toml \[areas\."parking area"\].*anchors'):
         areas.area_rules()
 
@@ -185,7 +244,7 @@ def test_colour_word_naming_two_colours_is_refused(data_dir: Path) -> None:
 
 
 def test_missing_version_or_file_names_the_file(data_dir: Path) -> None:
-    _edit(data_dir / "areas.toml", "version = 1", "")
+    _edit(data_dir / "areas.toml", "version = 2", "")
     with pytest.raises(VocabularyError, match=r"areas\.toml needs an integer 'version'"):
         areas.area_rules()
     (data_dir / "colours.toml").unlink()
@@ -199,4 +258,4 @@ def test_the_digest_follows_the_files(data_dir: Path) -> None:
     _edit(data_dir / "rooms.toml", '"larder"', '"larder", "cellar"')
     _clear()
     after = vocab.vocabulary_info()
-    assert after["digest"] != before["digest"] and rooms.room_type("wine cellar") == "pantry"
+    assert after["digest"] != before["digest"] and rooms.room_type("root cellar") == "closet"

@@ -1,0 +1,184 @@
+"""Which rooms of a map a room constraint ("in the TV room") matches, and how well.
+
+A room is matched by the first of these steps that finds it, and the reason says which:
+
+1. **label**: its label names the type asked for: fully, or when the map inferred the
+   label with little confidence (best type below :data:`LABEL_SURE_P`), a little less
+   (down to :data:`LABEL_LO`), so a confidently labelled room wins a tie;
+2. **alternatives**: the type is among the room's inferred types (``RoomNode.types``):
+   fully when it is the best one, else graded by its probability relative to the best
+   (:func:`alternative_sim`), so "the TV room" finds a room labelled "living room" that
+   holds a TV;
+3. **aliases**: the request's room words, read through ``rooms.toml`` ("WC" → toilet),
+   name its label or an alternative; or a type people name interchangeably with the one
+   asked for (``related`` in ``rooms.toml``: "lounge" for a living room) is its label or
+   an alternative, at the pair's similarity times :data:`RELATED_SCALE` (not for a
+   negated constraint: "outside the dining room" says nothing against the kitchen);
+4. **embedding**: when no room matched by the steps above, text-embedding similarity of
+   the request's words to each room's label and alternatives.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from inherit_sg.retrieval.similarity import LABEL_COS_HI, LABEL_COS_LO, PhraseSimilarity, graded
+from inherit_sg.retrieval.snapshot import MapSnapshot
+from inherit_sg.vocab.rooms import related, room_type
+
+Matches = dict[str, tuple[float, str]]
+
+# A label inferred with probability p matches at LABEL_LO … 1 (fully from LABEL_SURE_P on).
+LABEL_LO, LABEL_SURE_P = 0.8, 0.5
+# Alternatives other than the best match in [ALT_LO, ALT_HI] by their probability relative
+# to the best one's, when their probability is at least ALT_MIN_P (never above the best).
+ALT_LO, ALT_HI = 0.5, 0.95
+ALT_MIN_P = 0.1
+# A room of a type related to the one asked for matches at the pair's similarity times this.
+RELATED_SCALE = 0.75
+# Weaker embedding resemblance than this is ignored.
+MIN_MATCH = 0.1
+
+
+def alternative_sim(p: float, p_best: float) -> float | None:
+    """Similarity of a room to a type it is inferred to be with probability ``p`` when its
+    best type has ``p_best``: 1 for the best, ``ALT_LO`` … ``ALT_HI`` in proportion to
+    ``p / p_best`` for others of at least ``ALT_MIN_P``, None below that."""
+    if p >= p_best:
+        return 1.0
+    if p < ALT_MIN_P or p_best <= 0:
+        return None
+    return ALT_LO + (ALT_HI - ALT_LO) * (p / p_best)
+
+
+def label_sim(p: float | None) -> float:
+    """Similarity of a room to the type its label names, inferred with probability ``p``
+    (None: not inferred, as in oracle maps): 1 from ``LABEL_SURE_P`` on, down to
+    ``LABEL_LO`` for a label the map was unsure of."""
+    if p is None or p >= LABEL_SURE_P:
+        return 1.0
+    return LABEL_LO + (1.0 - LABEL_LO) * max(p, 0.0) / LABEL_SURE_P
+
+
+def room_type_sims(rid: str, snap: MapSnapshot) -> dict[str, tuple[float, str]]:
+    """Every type room ``rid`` may be, with its similarity and how it is known: the type
+    its label names (:func:`label_sim`), then its inferred alternatives
+    (:func:`alternative_sim`, never above the label's)."""
+    out: dict[str, tuple[float, str]] = {}
+    alts = snap.room_alternatives.get(rid, ())
+    inferred = dict(alts)
+    label_type = snap.room_types.get(rid)
+    if label_type is not None:
+        p = inferred.get(label_type)
+        how = "its label" if p is None else f"its label, inferred p={p:.2f}"
+        out[label_type] = (label_sim(p), how)
+    if alts:
+        p_best = alts[0][1]
+        top = out[label_type][0] if label_type is not None else label_sim(p_best)
+        for rtype, p in alts:
+            value = alternative_sim(p, p_best)
+            if value is not None and rtype not in out:
+                out[rtype] = (
+                    min(value, top),
+                    f"inferred p={p:.2f}, best {alts[0][0]} p={p_best:.2f}",
+                )
+    return out
+
+
+def _by_type(rid: str, wanted: str, types: dict[str, tuple[float, str]]) -> tuple[float, str]:
+    value, how = types[wanted]
+    step = "label" if how.startswith("its label") else "alternatives"
+    verb = "is" if value >= 1.0 else "may be"
+    return value, f"room {rid} {verb} a {wanted} ({step}: {how})"
+
+
+def _by_alias(
+    rid: str,
+    asked: str | None,
+    named: dict[str, str],
+    types: dict[str, tuple[float, str]],
+    with_related: bool,
+) -> tuple[float, str] | None:
+    best: tuple[float, str] | None = None
+    for word, rtype in named.items():
+        if rtype in types:
+            value, how = types[rtype]
+            reason = f"'{word}' names a {rtype} (aliases, rooms.toml); room {rid} is one ({how})"
+            if best is None or value > best[0]:
+                best = (value, reason)
+    if not with_related:
+        return best
+    for wanted in dict.fromkeys([*([asked] if asked else []), *named.values()]):
+        for other, similarity in related(wanted).items():
+            if other not in types:
+                continue
+            value = RELATED_SCALE * similarity * types[other][0]
+            if best is None or value > best[0]:
+                best = (
+                    value,
+                    f"room {rid} is a {other} ({types[other][1]}), a type people call a "
+                    f"{wanted} too (related {similarity:.2f}, rooms.toml)",
+                )
+    return best
+
+
+def _by_embedding(out: Matches, words: list[str], snap: MapSnapshot, sim: PhraseSimilarity) -> None:
+    """Graded embedding similarity of ``words`` to each room's label and alternatives
+    (an alternative's at its :func:`alternative_sim`)."""
+    queries = [w for w in dict.fromkeys(words) if w]
+    texts: dict[str, list[tuple[str, float]]] = {}
+    for rid in sorted(snap.rooms):
+        label = snap.rooms[rid].label.strip().lower()
+        own = [(label, 1.0)] if label else []
+        own += [
+            (t, v)
+            for t, (v, how) in room_type_sims(rid, snap).items()
+            if not how.startswith("its label")
+        ]
+        texts[rid] = own
+    distinct = list(dict.fromkeys(t for own in texts.values() for t, _ in own))
+    if not queries or not distinct:
+        return
+    cos = sim.matrix(queries, distinct)
+    best_q = cos.argmax(axis=0)
+    top = cos[best_q, np.arange(len(distinct))]
+    value = dict(zip(distinct, graded(top, LABEL_COS_LO, LABEL_COS_HI), strict=True))
+    index = {t: j for j, t in enumerate(distinct)}
+    for rid, own in texts.items():
+        scored = [(float(value[t]) * factor, t) for t, factor in own]
+        if not scored:
+            continue
+        score, text = max(scored)
+        if score >= MIN_MATCH:
+            j = index[text]
+            out[rid] = (
+                score,
+                f"'{text}' of room {rid} resembles '{queries[best_q[j]]}' "
+                f"(text embedding, cos {top[j]:.2f})",
+            )
+
+
+def match_rooms(
+    words: list[str],
+    rtype: str | None,
+    snap: MapSnapshot,
+    sim: PhraseSimilarity,
+    *,
+    negated: bool = False,
+) -> Matches:
+    """Room id → (similarity, reason) for a request naming room type ``rtype`` (None when
+    its words name no type) with ``words``; see the module docstring for the steps.
+    ``negated``: the constraint excludes the rooms ("not in the kitchen")."""
+    out: Matches = {}
+    named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
+    for rid in sorted(snap.rooms):
+        types = room_type_sims(rid, snap)
+        if rtype is not None and rtype in types:
+            out[rid] = _by_type(rid, rtype, types)
+            continue
+        found = _by_alias(rid, rtype, named, types, with_related=not negated)
+        if found is not None and found[0] >= MIN_MATCH:
+            out[rid] = found
+    if not out:
+        _by_embedding(out, words, snap, sim)
+    return out

@@ -1,0 +1,168 @@
+"""Room constraints against rooms' labels, inferred alternatives, aliases and related
+types, then embeddings (retrieval/room_match.py through ``resolve_matches``)."""
+
+from __future__ import annotations
+
+import pytest
+
+from inherit_sg.model import (
+    BBox3D,
+    Edge,
+    EdgeKind,
+    FloorNode,
+    Layer,
+    ObjectNode,
+    RoomNode,
+    SceneGraph,
+    make_id,
+)
+from inherit_sg.retrieval.constraints import LabelConstraint, RoomConstraint
+from inherit_sg.retrieval.match import resolve_matches
+from inherit_sg.retrieval.room_match import (
+    ALT_HI,
+    ALT_LO,
+    LABEL_LO,
+    RELATED_SCALE,
+    alternative_sim,
+    label_sim,
+)
+from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from tests.unit.retrieval_fixtures import hash_similarity
+from tests.unit.retrieval_rank import rank, request
+
+LIVING = (("living room", 0.5), ("tv room", 0.35), ("family room", 0.1), ("other room", 0.03))
+BEDROOM = (("bedroom", 0.9), ("tv room", 0.04))
+TOILET = (("toilet", 0.6), ("bathroom", 0.35))
+
+
+def _graph(rooms: dict[str, tuple[str, tuple[tuple[str, float], ...]]]) -> SceneGraph:
+    """One floor; each room ``key: (label, types)`` holds a tv at its own x."""
+    g = SceneGraph()
+    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
+    g.add_or_update(floor)
+    for i, (key, (label, types)) in enumerate(rooms.items()):
+        room = RoomNode(
+            make_id(Layer.ROOM, key),
+            label,
+            floor_id=floor.id,
+            position=(10.0 * i, 0.0, 0.0),
+            types=types,
+        )
+        g.add_or_update(room)
+        g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
+        x = 10.0 * i
+        tv = ObjectNode(
+            make_id(Layer.OBJECT, f"tv-{key}"),
+            "tv",
+            (x, 0.0, 1.0),
+            BBox3D((x - 0.5, -0.1, 0.7), (x + 0.5, 0.1, 1.3)),
+            room_id=room.id,
+            floor_id=floor.id,
+        )
+        g.add_or_update(tv)
+    return g
+
+
+def _snap(rooms: dict[str, tuple[str, tuple[tuple[str, float], ...]]]) -> MapSnapshot:
+    return build_snapshot(_graph(rooms), (1,))
+
+
+def _room(snap: MapSnapshot, rtype: str | None, name: str) -> dict[str, tuple[float, str]]:
+    found = resolve_matches(
+        RoomConstraint(id="c2", type=rtype, name=name), "object", snap, hash_similarity()
+    )
+    assert found is not None
+    return found
+
+
+def test_alternative_similarity_is_graded_by_probability() -> None:
+    assert alternative_sim(0.5, 0.5) == 1.0
+    assert alternative_sim(0.35, 0.5) == pytest.approx(ALT_LO + (ALT_HI - ALT_LO) * 0.7)
+    assert (alternative_sim(0.49, 0.5) or 0.0) < ALT_HI + 1e-9
+    assert alternative_sim(0.05, 0.5) is None  # below the floor
+
+
+def test_the_tv_room_finds_a_living_room_with_a_tv() -> None:
+    snap = _snap({"a": ("living room", LIVING), "b": ("bedroom", BEDROOM)})
+    assert snap.room_alternatives["room:a"][:2] == (("living room", 0.5), ("tv room", 0.35))
+    found = _room(snap, "tv room", "tv room")
+    assert set(found) == {"room:a"}  # the bedroom's 0.04 is below the floor
+    value, why = found["room:a"]
+    assert ALT_LO < value < ALT_HI
+    assert "alternatives" in why and "tv room" in why and "p=0.35" in why
+
+
+def test_the_label_comes_first() -> None:
+    snap = _snap({"a": ("living room", LIVING), "t": ("tv room", (("tv room", 0.8),))})
+    found = _room(snap, "tv room", "tv room")
+    assert found["room:t"][0] == 1.0 and "label" in found["room:t"][1]
+    assert found["room:a"][0] < 1.0  # still a candidate, ranked below
+    living = _room(snap, "living room", "living room")
+    assert living["room:a"] == (
+        1.0,
+        "room room:a is a living room (label: its label, inferred p=0.50)",
+    )
+
+
+def test_an_unsure_label_matches_a_little_less() -> None:
+    unsure = (("living room", 0.22), ("family room", 0.13), ("entryway", 0.09))
+    snap = _snap({"a": ("living room", LIVING), "u": ("living room", unsure)})
+    found = _room(snap, "living room", "sitting room")
+    assert found["room:a"][0] == 1.0
+    assert LABEL_LO < found["room:u"][0] < 1.0
+    assert found["room:u"][0] == pytest.approx(label_sim(0.22))
+    # its alternatives never count more than its label
+    family = _room(snap, "family room", "den")
+    assert family["room:u"][0] <= found["room:u"][0]
+    assert label_sim(None) == 1.0 and label_sim(0.9) == 1.0
+
+
+def test_the_request_words_are_read_through_aliases() -> None:
+    snap = _snap({"w": ("toilet", TOILET), "a": ("living room", LIVING)})
+    # an LLM parser may leave the type unset and keep the words
+    found = _room(snap, None, "wc")
+    assert set(found) == {"room:w"}
+    assert found["room:w"][0] == 1.0 and "'wc' names a toilet" in found["room:w"][1]
+    # a room word on the room layer (a LabelConstraint): "powder room" names a toilet
+    label = LabelConstraint(id="c1", labels=("powder room",), noun="powder room")
+    on_rooms = resolve_matches(label, "room", snap, hash_similarity())
+    assert on_rooms is not None and on_rooms["room:w"][0] == 1.0
+    # the bathroom is the toilet room's second type
+    bath = _room(snap, "bathroom", "master bath")
+    assert ALT_LO < bath["room:w"][0] < 1.0 and "alternatives" in bath["room:w"][1]
+
+
+def test_related_types_match_maps_without_alternatives() -> None:
+    # an oracle map: labels only, no inferred types ("lounge" is a family room now)
+    snap = _snap({"l": ("living room", ()), "k": ("kitchen", ())})
+    found = _room(snap, "family room", "lounge")
+    assert set(found) == {"room:l"}
+    value, why = found["room:l"]
+    assert value == pytest.approx(RELATED_SCALE * 0.8) and "related" in why
+
+
+def test_related_types_say_nothing_against_a_room() -> None:
+    # "the table outside the dining room" must not penalise the kitchen
+    snap = _snap({"k": ("kitchen", ()), "d": ("dining room", ())})
+    found = resolve_matches(
+        RoomConstraint(id="c2", type="dining room", name="dining room", negated=True),
+        "object",
+        snap,
+        hash_similarity(),
+    )
+    assert found is not None and set(found) == {"room:d"}
+    assert "room:k" in _room(snap, "dining room", "dining room")  # but helps a positive one
+
+
+def test_embeddings_when_nothing_else_matches() -> None:
+    snap = _snap({"a": ("atrium", ()), "k": ("kitchen", ())})
+    found = _room(snap, None, "atrium space")
+    assert "room:a" in found and "room:k" not in found
+    assert "text embedding" in found["room:a"][1]
+
+
+def test_ranking_prefers_the_room_inferred_as_the_one_asked_for() -> None:
+    snap = _snap({"a": ("living room", LIVING), "b": ("bedroom", BEDROOM)})
+    ranked, _ = rank(snap, request("tv", RoomConstraint(type="tv room", name="tv room")))
+    assert ranked[0].id == "obj:tv-a"
+    assert ranked[0].score > ranked[1].score
