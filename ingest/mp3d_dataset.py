@@ -8,18 +8,20 @@ the same frame pipeline as generated houses (noise model, per-frame instance ids
 Coordinates stay the file's own (z-up metres): object centroids in ``scene.json`` are
 the ``O`` lines' box centres, camera poses are in the same frame. The ground truth adds
 what the world builder decided: each object's rendered colour name (``colour``
-attribute) and every opening between rooms as a door (``DoorGT``).
+attribute), how its box was adjusted to be seen (``drawn`` attribute, only when it was:
+see :mod:`ingest.mp3d_drawn`) and every opening between rooms as a door (``DoorGT``).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from ingest.mp3d_drawn import Drawn, drawn_objects
 from ingest.mp3d_house import HouseFile, parse_house
-from ingest.mp3d_space import Level, LevelSpace, house_levels
+from ingest.mp3d_space import Level, LevelSpace, blocks_walking, house_levels
 from ingest.mp3d_walk import plan_house_walk
 from ingest.mp3d_walls import WallPlan, plan_walls
 from ingest.mp3d_world import build_house_world, colour_name, house_lights
@@ -42,6 +44,7 @@ class HouseWorld:
     walls: WallPlan
     world: WorldMesh
     lights: RoomLights
+    drawn: dict[str, Drawn] = field(default_factory=dict)  # object id -> boxes drawn
 
     @property
     def scene(self) -> Scene:
@@ -56,9 +59,14 @@ class HouseWorld:
         return plan_house_walk(self.levels, self.spaces, self.walls.walls, rng)
 
 
-def _complete_scene(scene: Scene, walls: WallPlan, levels: list[Level]) -> None:
+def _complete_scene(
+    scene: Scene, walls: WallPlan, levels: list[Level], drawn: dict[str, Drawn]
+) -> None:
     for obj in scene.objects:
         obj.attributes.setdefault("colour", colour_name(obj.label))
+        note = drawn[obj.id].note if obj.id in drawn else ""
+        if note:
+            obj.attributes["drawn"] = note
     floor_of = {room_id: lv for lv in levels for room_id in lv.outlines}
     scene.doors = []
     for k, opening in enumerate(walls.openings):
@@ -75,6 +83,18 @@ def _complete_scene(scene: Scene, walls: WallPlan, levels: list[Level]) -> None:
         )
 
 
+def _block_extended(house: HouseFile, spaces: list[LevelSpace], drawn: dict[str, Drawn]) -> None:
+    """Boxes drawn larger than annotated block the walk where they now stand."""
+    space_of = {s.level.index: s for s in spaces}
+    for obj in house.scene.objects:
+        space = space_of.get(obj.floor)
+        d = drawn.get(obj.id)
+        if space is None or d is None or not any(n.startswith("proud") for n in d.notes):
+            continue
+        if blocks_walking(obj.label, obj.bbox_min[2], space.level.z):
+            space.block([part.corners() for part in d.parts])
+
+
 def load_house_world(path: str | Path) -> HouseWorld:
     """Parse a ``.house`` file and build its world; DatasetError when it has no region
     with a usable outline."""
@@ -85,9 +105,11 @@ def load_house_world(path: str | Path) -> HouseWorld:
         raise DatasetError(f"{source}: no region belongs to a level")
     spaces = [LevelSpace(house, level) for level in levels]
     walls = plan_walls(house, levels, spaces)
-    world = build_house_world(house, levels, walls)
-    _complete_scene(house.scene, walls, levels)
-    return HouseWorld(source, house, levels, spaces, walls, world, house_lights(levels))
+    drawn = drawn_objects(house, levels, spaces, walls)
+    _block_extended(house, spaces, drawn)
+    world = build_house_world(house, levels, walls, drawn)
+    _complete_scene(house.scene, walls, levels, drawn)
+    return HouseWorld(source, house, levels, spaces, walls, world, house_lights(levels), drawn)
 
 
 def write_house_dataset(

@@ -1,10 +1,14 @@
 """Matterport3D ``.house`` files (ASCII 1.1) → ground-truth :class:`Scene`.
 
 A real Matterport layout becomes a world the renderer can walk through: levels become
-floors, regions become rooms (floor polygons from their ``S``/``V`` surface lines, type
-from the region label code), and ``O`` lines become objects (oriented boxes, labelled by
-their ``C`` category). Coordinates stay as in the file: MP3D houses are already z-up
-metres, so positions compare directly with the source's own annotations.
+floors, every region becomes a room (floor polygon from its ``S``/``V`` surface lines,
+readable type from its label code, the code and the MP3D category name kept in the
+room's ``attributes``), and ``O`` lines become objects (oriented boxes labelled by their
+raw ``C`` category; ``attributes`` keep the raw name, the mpcat40 class and the line's
+index). Walls, floors, ceilings, junk segments and unnamed leftovers are not objects:
+they are listed in :attr:`HouseFile.skipped` with the reason. Coordinates stay as in the
+file: MP3D houses are already z-up metres, so positions compare directly with the
+source's own annotations.
 
 Line layouts used here (first token, then fields by position):
 ``L`` level: index, n_regions, label, position xyz, bbox min xyz, bbox max xyz.
@@ -26,44 +30,89 @@ import numpy as np
 from ingest.synthetic.scene import FloorGT, ObjectGT, RoomGT, Scene
 from inherit_sg.errors import DatasetError
 
-# Region label codes of the MP3D annotation format.
-REGION_TYPES: dict[str, str] = {
-    "a": "bathroom",
-    "b": "bedroom",
-    "c": "closet",
-    "d": "dining room",
-    "e": "entryway",
-    "f": "family room",
-    "g": "garage",
-    "h": "hallway",
-    "i": "library",
-    "j": "laundry room",
-    "k": "kitchen",
-    "l": "living room",
-    "m": "meeting room",
-    "n": "lounge",
-    "o": "office",
-    "p": "porch",
-    "r": "game room",
-    "s": "stairs",
-    "t": "toilet",
-    "u": "utility room",
-    "v": "tv room",
-    "w": "gym",
-    "x": "outdoor",
-    "y": "balcony",
-    "z": "room",
-    "B": "bar",
-    "C": "classroom",
-    "D": "dining booth",
-    "S": "spa",
-    "T": "transportation",
-    "-": "room",
+# Region label codes of the MP3D annotation format: code -> (readable type, the
+# category as the Matterport3D documentation names it). Every region becomes a room of
+# the ground truth with its readable type; the code and the category are kept in the
+# room's attributes.
+REGIONS: dict[str, tuple[str, str]] = {
+    "a": ("bathroom", "bathroom"),
+    "b": ("bedroom", "bedroom"),
+    "c": ("closet", "closet"),
+    "d": ("dining room", "dining room"),
+    "e": ("entryway", "entryway/foyer/lobby"),
+    "f": ("family room", "familyroom"),
+    "g": ("garage", "garage"),
+    "h": ("hallway", "hallway"),
+    "i": ("library", "library"),
+    "j": ("laundry room", "laundryroom/mudroom"),
+    "k": ("kitchen", "kitchen"),
+    "l": ("living room", "living room"),
+    "m": ("meeting room", "meetingroom/conferenceroom"),
+    "n": ("lounge", "lounge"),
+    "o": ("office", "office"),
+    "p": ("porch", "porch/terrace/deck/driveway"),
+    "r": ("game room", "rec/game"),
+    "s": ("stairs", "stairs"),
+    "t": ("toilet", "toilet"),
+    "u": ("utility room", "utilityroom/toolroom"),
+    "v": ("tv room", "tv"),
+    "w": ("gym", "workout/gym/exercise"),
+    "x": ("outdoor", "outdoor"),
+    "y": ("balcony", "balcony"),
+    "z": ("room", "other room"),
+    "B": ("bar", "bar"),
+    "C": ("classroom", "classroom"),
+    "D": ("dining booth", "dining booth"),
+    "S": ("spa", "spa/sauna"),
+    "T": ("transportation", "transportation"),
+    "Z": ("junk", "junk"),
+    "-": ("room", "no label"),
 }
+REGION_TYPES: dict[str, str] = {code: rtype for code, (rtype, _) in REGIONS.items()}
 
-# Categories that are the building itself (rendered as background) or annotation debris.
-STRUCTURE = {"wall", "floor", "ceiling", "remove", "delete", "unknown", "void", "misc", "objects"}
+# Raw categories (the ``C`` lines' mapping names) that are not objects of the ground truth:
+# the building itself (walls, floors and ceilings are drawn from the region outlines),
+# segments the annotators marked as junk ("remove", "delete": mpcat40 ``void``) and
+# unnamed leftovers ("unknown": mostly one room-sized box per region). ``O`` lines with
+# no category (index -1) are skipped too. See :attr:`HouseFile.skipped`.
+STRUCTURE = {"wall", "floor", "ceiling"}
+JUNK = {"remove", "delete", "void"}
+UNNAMED = {"unknown", ""}
 DOOR_WORDS = {"door", "doorframe", "door frame", "doorway"}
+
+
+@dataclass(frozen=True)
+class Category:
+    """One ``C`` line: the raw annotator name (``#`` read as a space) and its mpcat40 class."""
+
+    raw: str
+    mpcat40: str
+    mpcat40_index: int
+
+
+@dataclass(frozen=True)
+class SkippedObject:
+    """An ``O`` line that is not an object of the ground truth, and why (``structure``,
+    ``junk``, ``unnamed``, ``no category`` or ``no region``)."""
+
+    index: int
+    region: int
+    raw: str
+    mpcat40: str
+    reason: str
+
+
+def skip_reason(raw: str, has_category: bool = True) -> str | None:
+    """Why an object of raw category ``raw`` is not kept (None when it is kept)."""
+    if not has_category:
+        return "no category"
+    if raw in STRUCTURE:
+        return "structure"
+    if raw in JUNK:
+        return "junk"
+    if raw in UNNAMED:
+        return "unnamed"
+    return None
 
 
 @dataclass(frozen=True)
@@ -90,6 +139,7 @@ class HouseFile:
     boxes: dict[str, OrientedBox]  # object id -> oriented box
     region_heights: dict[str, float]  # room id -> ceiling height above its floor
     region_floor_z: dict[str, float] = field(default_factory=dict)  # room id -> floor height
+    skipped: list[SkippedObject] = field(default_factory=list)  # O lines left out, with why
 
 
 def _floats(parts: list[str], start: int, n: int) -> np.ndarray:
@@ -113,7 +163,7 @@ def parse_house(path: str | Path) -> HouseFile:
     regions: dict[int, tuple[int, str, np.ndarray, np.ndarray, float]] = {}
     surface_region: dict[int, int] = {}
     surface_vertices: dict[int, list[np.ndarray]] = defaultdict(list)
-    categories: dict[int, str] = {}
+    categories: dict[int, Category] = {}
     objects: list[tuple[int, int, int, np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
     for lineno, line in enumerate(lines[1:], 2):
         parts = line.split()
@@ -137,7 +187,9 @@ def parse_house(path: str | Path) -> HouseFile:
             elif tag == "V":
                 surface_vertices[int(parts[2])].append(_floats(parts, 4, 3))
             elif tag == "C":
-                categories[int(parts[1])] = parts[3].replace("#", " ")
+                categories[int(parts[1])] = Category(
+                    parts[3].replace("#", " "), parts[5].replace("#", " "), int(parts[4])
+                )
             elif tag == "O":
                 objects.append(
                     (
@@ -175,7 +227,7 @@ def parse_house(path: str | Path) -> HouseFile:
     floor_z: dict[str, float] = {}
     for index in sorted(regions):
         level, code, lo, hi, height = regions[index]
-        rtype = REGION_TYPES.get(code, "room")
+        rtype, region_category = REGIONS.get(code, ("room", f"unknown code {code}"))
         counts[rtype] += 1
         polygon = polygons.get(
             index, [[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]
@@ -188,35 +240,59 @@ def parse_house(path: str | Path) -> HouseFile:
                 floor=level_index.get(level, 0),
                 polygon=[[float(x), float(y)] for x, y in polygon],
                 name=rtype if counts[rtype] == 1 else f"{rtype} {counts[rtype]}",
+                attributes={
+                    "mp3d_code": code,
+                    "mp3d_category": region_category,
+                    "mp3d_index": index,
+                },
             )
         )
         heights[room_id] = height if height > 0 else float(hi[2] - lo[2])
         floor_z[room_id] = float(lo[2])
 
     boxes: dict[str, OrientedBox] = {}
+    skipped: list[SkippedObject] = []
     for index, region, category, center, a0, a1, radii in objects:
-        label = categories.get(category, "")
-        if not label or label in STRUCTURE or region not in regions:
+        cat = categories.get(category)
+        raw = cat.raw if cat is not None else ""
+        mpcat40 = cat.mpcat40 if cat is not None else ""
+        reason = skip_reason(raw, cat is not None)
+        if reason is None and region not in regions:
+            reason = "no region"
+        if reason is not None:
+            skipped.append(SkippedObject(index, region, raw, mpcat40, reason))
             continue
+        assert cat is not None
         axis0 = a0 / (np.linalg.norm(a0) or 1.0)
         axis1 = a1 / (np.linalg.norm(a1) or 1.0)
         box = OrientedBox(center, np.stack([axis0, axis1, np.cross(axis0, axis1)]), np.abs(radii))
         corners = box.corners()
         obj_id = f"o{index}"
-        is_door = label in DOOR_WORDS
+        is_door = raw in DOOR_WORDS
         scene.objects.append(
             ObjectGT(
                 id=obj_id,
                 instance_id=len(scene.objects) + 1,
-                label="door" if is_door else label,
+                label="door" if is_door else raw,
                 room_id=f"r{region}",
                 floor=level_index.get(regions[region][0], 0),
                 centroid=[float(v) for v in center],
                 bbox_min=[float(v) for v in corners.min(axis=0)],
                 bbox_max=[float(v) for v in corners.max(axis=0)],
-                attributes={"mp3d_category": label, "mp3d_index": index},
+                attributes={
+                    "mp3d_category": raw,
+                    "mp3d_index": index,
+                    "mpcat40": cat.mpcat40,
+                    "mpcat40_index": cat.mpcat40_index,
+                },
                 structural=is_door,
             )
         )
         boxes[obj_id] = box
-    return HouseFile(scene=scene, boxes=boxes, region_heights=heights, region_floor_z=floor_z)
+    return HouseFile(
+        scene=scene,
+        boxes=boxes,
+        region_heights=heights,
+        region_floor_z=floor_z,
+        skipped=skipped,
+    )

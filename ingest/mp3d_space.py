@@ -87,6 +87,13 @@ class LevelSpace:
                 self.furniture |= rasterise(self.grid, convex_hull(corners[:, :2]))
         self.furniture_clearance = self.grid.clearance(self.furniture)
 
+    def block(self, corners: list[np.ndarray]) -> None:
+        """Add the footprints of further furniture boxes ((8, 3) corners each): boxes
+        drawn larger than annotated (:mod:`ingest.mp3d_drawn`) must not be walked into."""
+        for c in corners:
+            self.furniture |= rasterise(self.grid, convex_hull(np.asarray(c)[:, :2]))
+        self.furniture_clearance = self.grid.clearance(self.furniture)
+
     def clearance(self, points: np.ndarray) -> np.ndarray:
         """Distance (m) from each (N, 2) plan point to the nearest furniture."""
         cells = [self.grid.cell(float(x), float(y)) for x, y in points]

@@ -19,8 +19,7 @@ from scipy import ndimage
 
 from ingest.mp3d_polygons import rasterise
 from ingest.mp3d_space import Level, LevelSpace
-from ingest.mp3d_walls import WallSpan
-from ingest.mp3d_world import WALL_T
+from ingest.mp3d_walls import WALL_T, WallSpan
 from ingest.synthetic.grid import Grid, components
 from ingest.synthetic.planner import BODY, RADIUS, FloorMap
 from ingest.synthetic.trajectory import Trajectory, _Walker, _wrap, camera_pose

@@ -27,6 +27,7 @@ from ingest.mp3d_space import Level, LevelSpace
 from ingest.synthetic.geom import subtract_intervals
 from ingest.synthetic.planner import RADIUS
 
+WALL_T = 0.08  # thickness of a drawn wall, metres (it stands just outside its region)
 GAP = 0.3  # largest distance between two region edges that face each other across a wall
 PARALLEL = np.sin(np.radians(15.0))
 MIN_OPENING = 0.5  # narrower shared stretches stay closed

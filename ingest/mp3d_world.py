@@ -5,8 +5,10 @@
   nothing shows through the seams between regions;
 * walls: the pieces planned by :mod:`ingest.mp3d_walls` (gaps at doors and open plans,
   lintels above them), as thin boxes just outside each region's outline;
-* objects: their oriented boxes (8 corners, 12 triangles) with the object's instance id;
-  doors are rendered as frames (two jambs and a head) so their gap stays passable.
+* objects: the boxes :mod:`ingest.mp3d_drawn` decides (8 corners, 12 triangles each)
+  with the object's instance id: the file's oriented box, flattened for floor coverings,
+  kept under the ceiling, extended to stand proud of a box that buries it; doors are
+  rendered as frames (two jambs and a head) so their gap stays passable.
 
 Colours are stable: one named colour per category (from the synthetic vocabulary, so the
 ground truth can say "the grey couch"), varied slightly per object; walls, floors and
@@ -19,10 +21,11 @@ import zlib
 
 import numpy as np
 
-from ingest.mp3d_house import HouseFile, OrientedBox
+from ingest.mp3d_drawn import Drawn, drawn_objects
+from ingest.mp3d_house import HouseFile
 from ingest.mp3d_polygons import rasterise, triangulate
-from ingest.mp3d_space import Level
-from ingest.mp3d_walls import WallPlan, WallSpan, door_axes
+from ingest.mp3d_space import Level, LevelSpace
+from ingest.mp3d_walls import WALL_T, WallPlan, WallSpan
 from ingest.synthetic.geom import Rect
 from ingest.synthetic.grid import Grid
 from ingest.synthetic.paint import CEILING, FACADE, FLOOR_FINISH, WALL_PAINTS, WOODS
@@ -30,10 +33,7 @@ from ingest.synthetic.render import RoomLights
 from ingest.synthetic.vocabulary import COLOURS, OBJECT_KINDS
 from ingest.synthetic.world import _CUBE_F, WorldMesh, srgb_to_linear
 
-WALL_T = 0.08  # wall thickness, metres
 SLAB_T = 0.1
-JAMB = 0.05  # door frame: jamb width and head height
-HEAD = 0.08
 LIGHT_RES = 0.05
 OBJECT_TEXTURE, BACKGROUND_TEXTURE = 0.06, 0.025
 
@@ -100,22 +100,6 @@ def _wall_corners(w: WallSpan) -> np.ndarray:
     return np.array([[*plan[2 * i + j], z] for i in (0, 1) for j in (0, 1) for z in (w.z0, w.z1)])
 
 
-def door_frame(box: OrientedBox) -> list[OrientedBox]:
-    """Two jambs and a head inside a door's box."""
-    up, width, _ = door_axes(box)
-    u, w = box.axes[up] * np.sign(box.axes[up, 2] or 1.0), box.axes[width]
-    parts = []
-    for side in (-1.0, 1.0):
-        radii = box.radii.copy()
-        radii[width] = min(JAMB / 2, box.radii[width])
-        centre = box.center + side * (box.radii[width] - radii[width]) * w
-        parts.append(OrientedBox(centre, box.axes, radii))
-    radii = box.radii.copy()
-    radii[up] = min(HEAD / 2, box.radii[up])
-    parts.append(OrientedBox(box.center + (box.radii[up] - radii[up]) * u, box.axes, radii))
-    return parts
-
-
 def _region_paint(room_id: str, room_type: str) -> tuple[np.ndarray, np.ndarray]:
     h = _hash(room_id)
     wall = np.asarray(WALL_PAINTS[h % len(WALL_PAINTS)], float)
@@ -140,8 +124,13 @@ def _level(mesh: _Mesh, house: HouseFile, level: Level) -> None:
         mesh.box(_axis_box(lo, hi), 0, rgb, BACKGROUND_TEXTURE)
 
 
-def build_house_world(house: HouseFile, levels: list[Level], walls: WallPlan) -> WorldMesh:
-    """Triangulate regions, walls and object boxes of a parsed house."""
+def build_house_world(
+    house: HouseFile, levels: list[Level], walls: WallPlan, drawn: dict[str, Drawn] | None = None
+) -> WorldMesh:
+    """Triangulate regions, walls and object boxes of a parsed house; ``drawn`` says how
+    each object is drawn (default: :func:`ingest.mp3d_drawn.drawn_objects`)."""
+    if drawn is None:
+        drawn = drawn_objects(house, levels, [LevelSpace(house, lv) for lv in levels], walls)
     mesh = _Mesh()
     for level in levels:
         _level(mesh, house, level)
@@ -150,11 +139,10 @@ def build_house_world(house: HouseFile, levels: list[Level], walls: WallPlan) ->
         wall_rgb, _ = _region_paint(wall.room_id, types[wall.room_id])
         mesh.box(_wall_corners(wall), 0, wall_rgb, BACKGROUND_TEXTURE)
     for obj in house.scene.objects:
-        box = house.boxes.get(obj.id)
-        if box is None:
+        if obj.id not in drawn:
             continue
         rgb = object_rgb(obj.label, obj.id)
-        for part in door_frame(box) if obj.label == "door" else [box]:
+        for part in drawn[obj.id].parts:
             mesh.box(part.corners(), obj.instance_id, rgb, OBJECT_TEXTURE)
     return mesh.build()
 

@@ -9,6 +9,12 @@
 * room and floor assignment accuracy over matched pairs.
 * relation precision: predicted RELATION edges between matched objects that hold in the
   ground truth (same predicate semantics, evaluated on true boxes).
+
+Rooms: :func:`room_overlaps` measures how much of every true room each predicted room's
+mask covers; :func:`room_correspondence` (most overlap) tells which true room a
+predicted room stands for when objects' room assignment is scored; :func:`match_rooms`
+gives room precision and recall against every true room by a mutual-majority rule
+(see :class:`RoomMatching`).
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ import numpy as np
 from ingest.synthetic.scene import ObjectGT, Scene
 from ingest.synthetic.truth_predicates import above, near, next_to, on
 from ingest.synthetic.vocabulary import OBJECT_KINDS
-from inherit_sg.model import Edge, ObjectNode, RoomNode
+from inherit_sg.model import Edge, ObjectNode, RoomMask, RoomNode
 
 _SYNONYMS: dict[str, set[str]] = {}
 for _kind in OBJECT_KINDS.values():
@@ -174,39 +180,173 @@ def evaluate_objects(
     )
 
 
-def room_correspondence(
-    rooms: Iterable[RoomNode], scene: Scene, floor_levels: dict[str, int], step: float = 0.1
-) -> dict[str, str]:
-    """Predicted room id -> the true room its mask overlaps most (same floor), by
-    sampling each true room polygon on a ``step`` grid."""
-    import cv2
+# ------------------------------------------------------------------ rooms
+ROOM_STEP = 0.1  # spacing of the sample points laid over the true room polygons (m)
+MAJORITY = 0.5  # share both sides of a room match must exceed
 
-    samples: list[tuple[str, int, np.ndarray]] = []
-    for room in scene.rooms:
-        poly = np.asarray(room.polygon, dtype=float)
-        lo, hi = poly.min(axis=0), poly.max(axis=0)
-        xs, ys = np.meshgrid(
-            np.arange(lo[0] + step / 2, hi[0], step), np.arange(lo[1] + step / 2, hi[1], step)
-        )
-        pts = np.stack([xs.ravel(), ys.ravel()], axis=1)
-        contour = poly.astype(np.float32).reshape(-1, 1, 2)
-        inside = np.array(
-            [cv2.pointPolygonTest(contour, (float(x), float(y)), False) > 0 for x, y in pts],
-            dtype=bool,
-        )
-        samples.append((room.id, room.floor, pts[inside]))
-    out: dict[str, str] = {}
-    for pred in rooms:
-        if pred.mask is None:
+
+def _polygon_samples(polygon: Sequence[Sequence[float]], step: float) -> np.ndarray:
+    """(N, 2) points of a ``step`` grid (cell centres) inside ``polygon`` (even-odd rule)."""
+    poly = np.asarray(polygon, dtype=float)[:, :2]
+    lo, hi = poly.min(axis=0), poly.max(axis=0)
+    xs, ys = np.meshgrid(
+        np.arange(lo[0] + step / 2, hi[0], step), np.arange(lo[1] + step / 2, hi[1], step)
+    )
+    px, py = xs.ravel(), ys.ravel()
+    inside = np.zeros(len(px), dtype=bool)
+    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0), strict=True):
+        if y0 == y1:
             continue
+        crosses = (y0 > py) != (y1 > py)
+        inside ^= crosses & (px < x0 + (py - y0) * (x1 - x0) / (y1 - y0))
+    return np.column_stack([px[inside], py[inside]])
+
+
+def _mask_hits(mask: RoomMask, pts: np.ndarray) -> np.ndarray:
+    """Which (N, 2) points fall on covered cells of ``mask``."""
+    c = np.floor((pts[:, 0] - mask.origin_x) / mask.resolution).astype(np.int64)
+    r = np.floor((pts[:, 1] - mask.origin_y) / mask.resolution).astype(np.int64)
+    h, w = mask.cells.shape
+    ok = (r >= 0) & (r < h) & (c >= 0) & (c < w)
+    hit = np.zeros(len(pts), dtype=bool)
+    hit[ok] = mask.cells[r[ok], c[ok]]
+    return hit
+
+
+def _mask_overlap(mask: RoomMask, polygon: Sequence[Sequence[float]]) -> float:
+    """Area (m²) of the mask's covered cells whose centres lie inside ``polygon``."""
+    from inherit_sg.eval.geometry import rasterize_polygon
+
+    inside = rasterize_polygon(
+        polygon, (mask.origin_x, mask.origin_y), mask.resolution, mask.cells.shape
+    )
+    return float(np.count_nonzero(inside & mask.cells)) * mask.resolution**2
+
+
+@dataclass
+class RoomOverlaps:
+    """Areas (m²) shared by predicted rooms and true rooms on the same floor.
+
+    ``overlap[i, j]``: area of true room ``true_ids[j]`` that predicted room
+    ``pred_ids[i]``'s mask covers (its cells whose centres lie in the polygon);
+    ``pred_area``: each predicted mask's whole area; ``true_area``: each true polygon's
+    area and ``mapped`` the part of it that any predicted room of its floor covers (both
+    sampled on a :data:`ROOM_STEP` grid; ``mapped`` is at least the largest overlap).
+    """
+
+    pred_ids: list[str]
+    true_ids: list[str]
+    overlap: np.ndarray
+    pred_area: np.ndarray
+    true_area: np.ndarray
+    mapped: np.ndarray
+
+
+def room_overlaps(
+    rooms: Iterable[RoomNode],
+    scene: Scene,
+    floor_levels: dict[str, int],
+    step: float = ROOM_STEP,
+) -> RoomOverlaps:
+    """Overlap areas of every predicted room (with a mask) against every true room of the
+    same floor (a predicted room whose floor is unknown is compared with all floors)."""
+    preds = [r for r in rooms if r.mask is not None]
+    samples = [_polygon_samples(t.polygon, step) for t in scene.rooms]
+    cell = step * step
+    overlap = np.zeros((len(preds), len(scene.rooms)))
+    union = [np.zeros(len(pts), dtype=bool) for pts in samples]
+    for i, pred in enumerate(preds):
+        assert pred.mask is not None
         level = floor_levels.get(pred.floor_id or "")
-        best, best_n = None, 0
-        for room_id, floor, pts in samples:
-            if level is not None and floor != level:
+        for j, (true, pts) in enumerate(zip(scene.rooms, samples, strict=True)):
+            if level is not None and true.floor != level:
                 continue
-            n = sum(pred.mask.contains_xy(float(x), float(y)) for x, y in pts)
-            if n > best_n:
-                best, best_n = room_id, n
-        if best is not None:
-            out[pred.id] = best
+            union[j] |= _mask_hits(pred.mask, pts)
+            overlap[i, j] = _mask_overlap(pred.mask, true.polygon)
+    return RoomOverlaps(
+        pred_ids=[r.id for r in preds],
+        true_ids=[t.id for t in scene.rooms],
+        overlap=overlap,
+        pred_area=np.array([r.mask.area_m2 for r in preds if r.mask is not None]),
+        true_area=np.array([len(pts) * cell for pts in samples]),
+        mapped=np.maximum(
+            np.array([float(u.sum()) * cell for u in union]),
+            overlap.max(axis=0) if len(preds) else 0.0,
+        ),
+    )
+
+
+def room_correspondence(
+    rooms: Iterable[RoomNode], scene: Scene, floor_levels: dict[str, int], step: float = ROOM_STEP
+) -> dict[str, str]:
+    """Predicted room id -> the true room (same floor) its mask overlaps most, for every
+    predicted room that overlaps any: the room an object of that predicted room is
+    compared with when room assignment is scored. Several predicted rooms may map to one
+    true room; for precision and recall use :func:`match_rooms`."""
+    ov = room_overlaps(rooms, scene, floor_levels, step)
+    out: dict[str, str] = {}
+    for i, pred_id in enumerate(ov.pred_ids):
+        if ov.overlap.shape[1] and ov.overlap[i].max() > 0:
+            out[pred_id] = ov.true_ids[int(np.argmax(ov.overlap[i]))]
     return out
+
+
+@dataclass
+class RoomMatching:
+    """Room precision and recall of a map against every true room (region).
+
+    Overlap rule (mutual majority): predicted room P and true room T match when more than
+    :data:`MAJORITY` of P's mask lies in T (P is not mostly some other room, or several
+    rooms merged) and P covers more than :data:`MAJORITY` of the part of T that any
+    predicted room covers (T is not split between predicted rooms). Each side has at most
+    one such partner, so the matching is one-to-one. Precision = matched / predicted
+    rooms; recall = matched / true rooms, every true room counted (``recall_seen`` leaves
+    out true rooms no predicted room touches; they are listed in ``unseen``).
+    """
+
+    precision: float
+    recall: float
+    recall_seen: float
+    predicted: int
+    true_rooms: int
+    matched: int
+    pairs: dict[str, str] = field(default_factory=dict)  # predicted id -> true id
+    unseen: list[str] = field(default_factory=list)
+    overlaps: RoomOverlaps | None = None
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-able figures (pairs included, overlap matrix left out)."""
+        out = asdict(self)
+        out.pop("overlaps")
+        return out
+
+
+def match_rooms(
+    rooms: Iterable[RoomNode],
+    scene: Scene,
+    floor_levels: dict[str, int],
+    step: float = ROOM_STEP,
+    majority: float = MAJORITY,
+) -> RoomMatching:
+    """Match predicted rooms with the scene's true rooms by the rule of :class:`RoomMatching`."""
+    ov = room_overlaps(rooms, scene, floor_levels, step)
+    pairs: dict[str, str] = {}
+    for i, pred_id in enumerate(ov.pred_ids):
+        for j, true_id in enumerate(ov.true_ids):
+            a = ov.overlap[i, j]
+            if a > 0 and a > majority * ov.pred_area[i] and a > majority * ov.mapped[j]:
+                pairs[pred_id] = true_id
+    n_pred, n_true = len(ov.pred_ids), len(ov.true_ids)
+    unseen = [t for t, m in zip(ov.true_ids, ov.mapped, strict=True) if m <= 0]
+    seen = n_true - len(unseen)
+    return RoomMatching(
+        precision=len(pairs) / n_pred if n_pred else 0.0,
+        recall=len(pairs) / n_true if n_true else 0.0,
+        recall_seen=len(pairs) / seen if seen else 0.0,
+        predicted=n_pred,
+        true_rooms=n_true,
+        matched=len(pairs),
+        pairs=pairs,
+        unseen=unseen,
+        overlaps=ov,
+    )
