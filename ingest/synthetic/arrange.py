@@ -6,12 +6,31 @@ from __future__ import annotations
 
 import numpy as np
 
-from ingest.synthetic.geom import Box
+from ingest.synthetic.geom import Box, Rect
 from ingest.synthetic.placement import FRONT, SIDES, WALL_QUARTER, Placed, RoomSpace
+from ingest.synthetic.vocabulary import OBJECT_KINDS
 
-TABLES = ("table", "dining table", "desk", "workbench", "coffee table")
-SEATS = ("chair", "stool")
+TABLES = (
+    "table",
+    "dining table",
+    "desk",
+    "workbench",
+    "coffee table",
+    "kitchen island",
+    "bar counter",
+    "picnic table",
+)
+SEATS = ("chair", "stool", "dining chair", "office chair", "bar stool", "outdoor chair")
 SHELF_LEVELS = (0.26, 0.51, 0.76)  # bookshelf board tops, as fractions of its height
+# Where small objects rest on kinds that are not flat on top: (height, local x range and y
+# range as fractions of the width and depth; the front is -y).
+SUPPORT_TOPS: dict[str, tuple[float, tuple[float, float], tuple[float, float]]] = {
+    "bed": (0.75, (-0.46, 0.46), (-0.46, 0.3)),
+    "sofa": (0.45, (-0.36, 0.36), (-0.48, 0.26)),
+    "armchair": (0.45, (-0.33, 0.33), (-0.48, 0.26)),
+    "recliner": (0.45, (-0.33, 0.33), (-0.48, 0.26)),
+    "toilet": (1.0, (-0.45, 0.45), (0.28, 0.48)),
+}
 # Supporters a small object prefers, best first.
 PREFERRED: dict[str, tuple[str, ...]] = {
     "tv": ("tv stand",),
@@ -168,17 +187,24 @@ def _try(space: RoomSpace, obj: Placed, x: float, y: float, quarter: int) -> boo
     return space.fits(obj)
 
 
+def has_shelves(obj: Placed) -> bool:
+    """Whether ``obj`` has shelf boards at :data:`SHELF_LEVELS`."""
+    return obj.label == "bookshelf" or OBJECT_KINDS[obj.label].shelves
+
+
 def support_levels(obj: Placed) -> list[float]:
     """World heights small objects can stand at on ``obj``, preferred first."""
+    h = obj.dims[2]
     if obj.label == "bookshelf":
-        h = obj.dims[2]
         return [obj.z + h * SHELF_LEVELS[2], obj.z + h * SHELF_LEVELS[1]]
+    if has_shelves(obj):
+        return [obj.z + h * f for f in (1.0, SHELF_LEVELS[2], SHELF_LEVELS[1], SHELF_LEVELS[0])]
     return [obj.top]
 
 
 def level_room(obj: Placed, level: float) -> float:
     """Clear height above a support level of ``obj``."""
-    if obj.label == "bookshelf":
+    if has_shelves(obj):
         h = obj.dims[2]
         tops = [obj.z + h * f for f in (*SHELF_LEVELS, 1.0)]
         above = [t for t in tops if t > level + 1e-6]
@@ -186,14 +212,41 @@ def level_room(obj: Placed, level: float) -> float:
     return 10.0
 
 
-def on_surface(space: RoomSpace, obj: Placed, support: Placed, rng: np.random.Generator) -> bool:
-    """Stand ``obj`` on ``support`` (top or a shelf) without touching other things."""
+def local_rect(obj: Placed, x0: float, x1: float, y0: float, y1: float) -> Rect:
+    """World footprint of the local rectangle ``[x0, x1] × [y0, y1]`` of ``obj``."""
+    corners = [(x0, y0), (x1, y1)]
+    for _ in range(obj.quarter % 4):
+        corners = [(-y, x) for x, y in corners]
+    xs, ys = [obj.x + c[0] for c in corners], [obj.y + c[1] for c in corners]
+    return Rect(min(xs), min(ys), max(xs), max(ys))
+
+
+def support_spots(obj: Placed) -> list[tuple[float, Rect]]:
+    """Where small objects can stand on ``obj``: (world height, footprint) pairs,
+    preferred first: its top or shelves, a bed's mattress, a sofa's seat, a toilet's tank."""
+    top = SUPPORT_TOPS.get(obj.label)
+    if top is None:
+        rect = obj.footprint.grown(-0.02)
+        return [(level, rect) for level in support_levels(obj)]
+    f, (x0, x1), (y0, y1) = top
+    w, d, h = obj.dims
+    return [(obj.z + f * h, local_rect(obj, x0 * w, x1 * w, y0 * d, y1 * d))]
+
+
+def on_surface(
+    space: RoomSpace,
+    obj: Placed,
+    support: Placed,
+    rng: np.random.Generator,
+    keepout: bool = True,
+) -> bool:
+    """Stand ``obj`` on ``support`` (top, shelf or seat) without touching other things
+    (nor keep-out zones, unless ``keepout`` is off: a vase on a counter under a window)."""
     obj.quarter = support.quarter
     ex, ey = obj.extent
-    top = support.footprint.grown(-0.02)
-    if ex > top.w or ey > top.h:
-        return False
-    for level in support_levels(support):
+    for level, top in support_spots(support):
+        if ex > top.w or ey > top.h:
+            continue
         if obj.dims[2] > level_room(support, level):
             continue
         for _ in range(25):
@@ -201,7 +254,7 @@ def on_surface(space: RoomSpace, obj: Placed, support: Placed, rng: np.random.Ge
             y = float(rng.uniform(top.y0 + ey / 2, top.y1 - ey / 2))
             set_pose(obj, x, y, support.quarter)
             obj.z = round(level, 4)
-            if space.fits(obj, ignore=(support,)):
+            if space.fits(obj, ignore=(support,), keepout=keepout):
                 obj.support = support
                 return True
     return False

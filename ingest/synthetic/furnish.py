@@ -1,34 +1,27 @@
-"""Furnishing rooms by function: each room gets functional groups from
-``AREA_TEMPLATES`` (the areas), each group is placed around an anchor piece, small
-objects stand on surfaces, and the room must stay walkable between its doors."""
+"""Furnishing rooms by function: each room gets functional groups (the areas), each
+group is placed around an anchor piece, small objects stand on surfaces, and the room
+must stay walkable between its doors.
+
+The classic world's groups come from ``AREA_TEMPLATES`` and are placed here; the
+real-world generator's (:mod:`ingest.synthetic.room_contents`) by
+:mod:`ingest.synthetic.furnish_real`.
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ingest.synthetic import arrange as ar
-from ingest.synthetic.geom import Rect
-from ingest.synthetic.grid import Grid, components, free_space
-from ingest.synthetic.placement import Placed, RoomSpace, build_keepout, make_placed
+from ingest.synthetic.furnish_checks import walkable
+from ingest.synthetic.furnish_real import furnish_room_real
+from ingest.synthetic.placement import AreaPlan, Placed, RoomSpace, build_keepout, make_placed
 from ingest.synthetic.plan import FloorPlan, HousePlan, RoomPlan
-from ingest.synthetic.planner import BODY, RADIUS
 from ingest.synthetic.structure import structural_objects
 from ingest.synthetic.vocabulary import AREA_TEMPLATES, OBJECT_KINDS
 
-# Wider than the walker (by two grid cells) so the check holds on any grid alignment.
-ROBOT_RADIUS = RADIUS + 0.1
-
-
-@dataclass
-class AreaPlan:
-    """A placed functional group."""
-
-    label: str
-    room_id: str
-    members: list[Placed] = field(default_factory=list)
-    id: str = ""
+__all__ = ["AreaPlan", "Furnishing", "furnish", "furnish_room", "place_group", "walkable"]
 
 
 @dataclass
@@ -157,32 +150,6 @@ def place_group(
     return group
 
 
-def walkable(space: RoomSpace) -> bool:
-    """Whether every doorway of the room is reachable from every other through it."""
-    grid = Grid(space.interior, 0.05)
-    fl = space.floor
-    obstacles: list[Rect] = [
-        o.footprint for o in space.objects if not o.flat and o.z - fl.z < BODY and o.support is None
-    ]
-    obstacles += space.obstacles
-    free = free_space(grid, obstacles, ROBOT_RADIUS)
-    labels = components(free)
-    seen = set()
-    for door in fl.doors:
-        if space.room.id not in door.rooms:
-            continue
-        x, y = door.center_xy
-        r = space.room.rect
-        if door.axis == "x":
-            y += 0.45 if abs(y - r.y0) < abs(y - r.y1) else -0.45
-        else:
-            x += 0.45 if abs(x - r.x0) < abs(x - r.x1) else -0.45
-        seen.add(int(labels[grid.cell(x, y)]))
-    if not seen or 0 in seen or len(seen) > 1:
-        return False
-    return bool((labels == seen.pop()).sum() * grid.res**2 >= 1.0)
-
-
 def furnish_room(
     plan: HousePlan, floor: FloorPlan, room: RoomPlan, rng: np.random.Generator
 ) -> list[AreaPlan]:
@@ -204,13 +171,15 @@ def furnish_room(
     return []
 
 
-def furnish(plan: HousePlan, rng: np.random.Generator) -> Furnishing:
-    """Place structural objects and furniture in every room; assign ids."""
-    objects = structural_objects(plan, rng)
+def furnish(plan: HousePlan, rng: np.random.Generator, style: str = "real") -> Furnishing:
+    """Place structural objects and furniture in every room; assign ids. ``style`` is the
+    house's ("real" or "classic")."""
+    objects = structural_objects(plan, rng, style)
     areas: list[AreaPlan] = []
+    furnish_one = furnish_room_real if style == "real" else furnish_room
     for floor in plan.floors:
         for room in floor.rooms:
-            for area in furnish_room(plan, floor, room, rng):
+            for area in furnish_one(plan, floor, room, rng):
                 areas.append(area)
                 objects.extend(area.members)
     for n, obj in enumerate(objects, start=1):

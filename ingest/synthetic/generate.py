@@ -27,7 +27,7 @@ from ingest.isg import IsgWriter
 from ingest.synthetic.furnish import AreaPlan, furnish
 from ingest.synthetic.ground_truth_files import VisibilityLog, write_ground_truth_extras
 from ingest.synthetic.house_truth import build_scene
-from ingest.synthetic.layout import MAX_FLOORS, MAX_ROOMS, MIN_ROOMS, plan_house
+from ingest.synthetic.layout import MAX_FLOORS, MAX_ROOMS, MIN_ROOMS, STYLES, plan_house
 from ingest.synthetic.noise import (
     NoiseConfig,
     PoseDrift,
@@ -87,9 +87,24 @@ class DatasetSummary:
         return asdict(self)
 
 
-def generate_house(seed: int, floors: int, rooms_per_floor: int | None = None) -> House:
+def generate_house(
+    seed: int,
+    floors: int,
+    rooms_per_floor: int | None = None,
+    *,
+    style: str = "real",
+    open_plan: bool | None = None,
+) -> House:
     """A procedural house with ``floors`` storeys and ``rooms_per_floor`` rooms each
-    (hallway included; random 5–8 when None)."""
+    (hallway included; random 5–8 when None).
+
+    ``style`` "real" (default) draws Matterport3D room types in realistic proportions,
+    open-plan ground floors, the real-world object catalogue and continuous colours;
+    "classic" is the earlier generator (nine room types, a twelve-colour palette).
+    ``open_plan`` True forces an open-plan ground floor (where the rooms allow it), False
+    gives walled rooms only (no open border anywhere); None draws it, about two houses
+    in five. The classic style has none.
+    """
     if seed < 0:
         raise InputError(f"seed must be a non-negative integer, got {seed}")
     if not 1 <= floors <= MAX_FLOORS:
@@ -98,10 +113,12 @@ def generate_house(seed: int, floors: int, rooms_per_floor: int | None = None) -
         raise InputError(
             f"rooms per floor must be between {MIN_ROOMS} and {MAX_ROOMS}, got {rooms_per_floor}"
         )
-    plan = plan_house(np.random.default_rng([seed, 0]), floors, rooms_per_floor)
-    furnishing = furnish(plan, np.random.default_rng([seed, 1]))
+    if style not in STYLES:
+        raise InputError(f"style must be one of {', '.join(STYLES)}, got {style!r}")
+    plan = plan_house(np.random.default_rng([seed, 0]), floors, rooms_per_floor, style, open_plan)
+    furnishing = furnish(plan, np.random.default_rng([seed, 1]), style)
     world = build_world(plan, furnishing.objects, np.random.default_rng([seed, 4]))
-    scene = build_scene(f"synthetic house {seed}", seed, plan, furnishing)
+    scene = build_scene(f"synthetic house {seed}", seed, plan, furnishing, style)
     return House(seed, plan, furnishing.objects, furnishing.areas, scene, world)
 
 

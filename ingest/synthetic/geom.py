@@ -126,3 +126,19 @@ def rect_minus(outer: Rect, hole: Rect) -> list[Rect]:
         Rect(hx1, hy0, outer.x1, hy1),
     ]
     return [p for p in pieces if p.w > EPS and p.h > EPS]
+
+
+def shared_border(a: Rect, b: Rect) -> tuple[str, float, float, float] | None:
+    """The border two touching rectangles share: ``(axis, coord, lo, hi)``, where ``axis``
+    is the direction the border runs ("x": the line ``y = coord``; "y": ``x = coord``)."""
+    for xa, xb in ((a.x1, b.x0), (a.x0, b.x1)):
+        if abs(xa - xb) < EPS:
+            lo, hi = max(a.y0, b.y0), min(a.y1, b.y1)
+            if hi - lo > EPS:
+                return ("y", xa, lo, hi)
+    for ya, yb in ((a.y1, b.y0), (a.y0, b.y1)):
+        if abs(ya - yb) < EPS:
+            lo, hi = max(a.x0, b.x0), min(a.x1, b.x1)
+            if hi - lo > EPS:
+                return ("x", ya, lo, hi)
+    return None

@@ -2,14 +2,45 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ingest.synthetic.furnish import Furnishing
+from ingest.synthetic.open_plan import open_neighbours
 from ingest.synthetic.placement import Placed, size_word
-from ingest.synthetic.plan import HousePlan
+from ingest.synthetic.plan import FloorPlan, HousePlan, RoomPlan
 from ingest.synthetic.scene import AreaGT, DoorGT, FloorGT, ObjectGT, RoomGT, Scene, StairsGT
+from ingest.synthetic.taxonomy import region_code
+from ingest.synthetic.vocabulary import OBJECT_KINDS
 
 
 def _r(values: tuple[float, ...] | list[float]) -> list[float]:
     return [round(float(v), 4) for v in values]
+
+
+def _attributes(obj: Placed) -> dict[str, Any]:
+    """Colour, material and size; for real-world houses also the sampled sRGB colour and
+    the Matterport3D raw category name and 40-class grouping."""
+    out: dict[str, Any] = {
+        "colour": obj.colour,
+        "material": obj.material,
+        "size": size_word(obj.scale),
+    }
+    if obj.rgb is not None:
+        out["rgb"] = [int(v) for v in obj.rgb]
+        out["mp3d_category"] = obj.raw or obj.label
+        out["mpcat40"] = OBJECT_KINDS[obj.label].mpcat40
+    return out
+
+
+def _room_attributes(room: RoomPlan, floor: FloorPlan, style: str) -> dict[str, Any]:
+    """A real-world room's Matterport3D region code and the rooms it opens onto."""
+    if style != "real":
+        return {}
+    out: dict[str, Any] = {"mp3d_code": region_code(room.type)}
+    if room.open_group:
+        out["open_group"] = room.open_group
+        out["open_to"] = open_neighbours(floor, room.id)
+    return out
 
 
 def _object(obj: Placed, area_of: dict[int, str]) -> ObjectGT:
@@ -26,14 +57,16 @@ def _object(obj: Placed, area_of: dict[int, str]) -> ObjectGT:
         bbox_min=_r(lo),
         bbox_max=_r(hi),
         area_id=area_of.get(id(obj)),
-        attributes={"colour": obj.colour, "material": obj.material, "size": size_word(obj.scale)},
+        attributes=_attributes(obj),
         supported_by=obj.support.id if obj.support is not None else None,
         structural=obj.structural,
     )
 
 
-def build_scene(name: str, seed: int, plan: HousePlan, furnishing: Furnishing) -> Scene:
-    """Ground truth of a planned and furnished house."""
+def build_scene(
+    name: str, seed: int, plan: HousePlan, furnishing: Furnishing, style: str = "classic"
+) -> Scene:
+    """Ground truth of a planned and furnished house (``style``: the generator's)."""
     area_of = {id(m): area.id for area in furnishing.areas for m in area.members}
     scene = Scene(name=name, seed=seed)
     for floor in plan.floors:
@@ -48,6 +81,7 @@ def build_scene(name: str, seed: int, plan: HousePlan, furnishing: Furnishing) -
                     floor=floor.index,
                     polygon=room.rect.polygon(),
                     name=room.name,
+                    attributes=_room_attributes(room, floor, style),
                 )
             )
         for door in floor.doors:

@@ -1,5 +1,6 @@
 """Procedural floor plans: a stair hall spine, rooms by recursive rectangle splitting,
-typed rooms, stairs between storeys.
+typed rooms (Matterport3D region types, or the classic nine), open-plan ground floors,
+stairs between storeys.
 
 Every storey shares one rectangular footprint. A hallway runs across the whole depth of
 the house (along y) and holds the straight staircases; the regions on either side of it
@@ -14,11 +15,25 @@ from itertools import pairwise
 
 import numpy as np
 
-from ingest.synthetic.geom import Rect
-from ingest.synthetic.openings import add_openings, connect_rooms
-from ingest.synthetic.plan import STAIR_WIDTH, WALL_T, FloorPlan, HousePlan, RoomPlan, StairPlan
+from ingest.synthetic.geom import Rect, shared_border
+from ingest.synthetic.open_plan import FOYER_MIN, OPEN_MIN, open_edge
+from ingest.synthetic.openings import add_openings, blocked_intervals, connect_rooms
+from ingest.synthetic.plan import (
+    STAIR_WIDTH,
+    WALL_T,
+    FloorPlan,
+    HousePlan,
+    Opening,
+    RoomPlan,
+    StairPlan,
+)
+from ingest.synthetic.room_assign import assign_rooms
+from ingest.synthetic.taxonomy import draw_programme
 
 MIN_ROOMS, MAX_ROOMS = 4, 12
+STYLES = ("real", "classic")
+OPEN_PLAN_SHARE = 0.5  # houses whose ground floor is drawn open-plan (where it fits)
+OPEN_TRIES = 60  # splits tried for an open-plan ground floor before giving up
 MAX_FLOORS = 3
 MIN_ROOM_DIM = 2.4
 TREAD = 0.25
@@ -137,8 +152,20 @@ def _dimensions(floors: int, counts: list[int], rng: np.random.Generator) -> tup
     return spacing, float(n_steps), run, depth, hall_w, left_w, right_w
 
 
-def plan_house(rng: np.random.Generator, floors: int, rooms_per_floor: int | None) -> HousePlan:
-    """Lay out a house of ``floors`` storeys; ``rooms_per_floor`` counts the hallway."""
+def plan_house(
+    rng: np.random.Generator,
+    floors: int,
+    rooms_per_floor: int | None,
+    style: str = "real",
+    open_plan: bool | None = None,
+) -> HousePlan:
+    """Lay out a house of ``floors`` storeys; ``rooms_per_floor`` counts the hallway.
+
+    ``style`` "real" (default) draws Matterport3D room types (:mod:`taxonomy`) and makes
+    the ground floor open-plan with chance :data:`OPEN_PLAN_SHARE` (``open_plan`` True
+    forces it where the rooms allow; False gives walled rooms only, without open borders
+    anywhere); "classic" is the earlier nine-type generator.
+    """
     counts = [
         rooms_per_floor if rooms_per_floor is not None else int(rng.integers(5, 9))
         for _ in range(floors)
@@ -146,13 +173,25 @@ def plan_house(rng: np.random.Generator, floors: int, rooms_per_floor: int | Non
     spacing, n_steps_f, run, depth, hall_w, left_w, right_w = _dimensions(floors, counts, rng)
     footprint = Rect(0.0, 0.0, left_w + hall_w + right_w, depth)
     hall = Rect(left_w, 0.0, left_w + hall_w, depth)
-    plan = HousePlan(footprint=footprint, level_spacing=spacing)
+    plan = HousePlan(footprint=footprint, level_spacing=spacing, style=style)
     ceiling = spacing - 0.2
     for f in range(floors):
         plan.floors.append(FloorPlan(index=f, z=round(f * spacing, 4), height=round(ceiling, 4)))
     _add_stairs(plan, hall, run, int(n_steps_f), rng)
-    for f, count in enumerate(counts):
-        _add_rooms(plan, f, count, hall, left_w, right_w, rng)
+    if style == "classic":
+        for f, count in enumerate(counts):
+            _add_rooms(plan, f, count, hall, left_w, right_w, rng)
+    elif style == "real":
+        programme = draw_programme(rng, [c - 1 for c in counts])
+        draw = rng.random() < OPEN_PLAN_SHARE
+        want_open = draw if open_plan is None else open_plan
+        for f, count in enumerate(counts):
+            open_floor = want_open and f == 0
+            walled = open_plan is False
+            sides = (left_w, right_w)
+            _add_real_rooms(plan, f, count, hall, sides, programme[f], (open_floor, walled), rng)
+    else:
+        raise ValueError(f"unknown house style {style!r}; expected one of {STYLES}")
     for stairs in plan.stairs:
         stairs.room_bottom = plan.floors[stairs.from_floor].rooms[0].id
         stairs.room_top = plan.floors[stairs.from_floor + 1].rooms[0].id
@@ -203,13 +242,7 @@ def _add_rooms(
     floor = plan.floors[f]
     stair_rects = [s.rect for s in plan.stairs if s.from_floor == f] + floor.holes
     for _ in range(100):
-        others = count - 1
-        rects: list[Rect] = []
-        if left_w > 0:
-            k_left = int(np.clip(round(others * left_w / (left_w + right_w)), 1, others - 1))
-            rects += _split_with_retries(Rect(0.0, 0.0, left_w, hall.h), k_left, rng)
-            others -= k_left
-        rects += _split_with_retries(Rect(hall.x1, 0.0, plan.footprint.x1, hall.h), others, rng)
+        rects = _split_sides(plan, count, hall, (left_w, right_w), rng)
         types = _room_types(rects, f, plan.footprint, rng)
         floor.rooms = [RoomPlan(id=f"r{f}_0", type="hallway", floor=f, rect=hall)]
         for i, (rect, kind) in enumerate(zip(rects, types, strict=True), start=1):
@@ -219,3 +252,99 @@ def _add_rooms(
             floor.doors = doors
             return
     raise RuntimeError(f"could not connect the rooms of floor {f}")
+
+
+def _split_sides(
+    plan: HousePlan,
+    count: int,
+    hall: Rect,
+    sides: tuple[float, float],
+    rng: np.random.Generator,
+) -> list[Rect]:
+    """The side regions (``sides``: left and right widths) split into ``count - 1`` rooms."""
+    left_w, right_w = sides
+    others = count - 1
+    rects: list[Rect] = []
+    if left_w > 0:
+        k_left = int(np.clip(round(others * left_w / (left_w + right_w)), 1, others - 1))
+        rects += _split_with_retries(Rect(0.0, 0.0, left_w, hall.h), k_left, rng)
+        others -= k_left
+    rects += _split_with_retries(Rect(hall.x1, 0.0, plan.footprint.x1, hall.h), others, rng)
+    return rects
+
+
+def _add_real_rooms(
+    plan: HousePlan,
+    f: int,
+    count: int,
+    hall: Rect,
+    sides: tuple[float, float],
+    programme: list[str],
+    openness: tuple[bool, bool],
+    rng: np.random.Generator,
+) -> None:
+    """Rooms of storey ``f`` from its programme, open borders and doors; ``openness`` is
+    (open-plan wanted, no open border at all)."""
+    open_plan, walled = openness
+    floor = plan.floors[f]
+    stair_rects = [s.rect for s in plan.stairs if s.from_floor == f] + floor.holes
+    for attempt in range(100):
+        rects = _split_sides(plan, count, hall, sides, rng)
+        want_open = open_plan and attempt < OPEN_TRIES
+        assignment = assign_rooms(rects, programme, hall, plan.footprint, rng, want_open, walled)
+        if assignment is None:
+            continue
+        floor.rooms = [RoomPlan(id=f"r{f}_0", type="hallway", floor=f, rect=hall)]
+        for i, (rect, kind) in enumerate(zip(rects, assignment.types, strict=True), start=1):
+            floor.rooms.append(RoomPlan(id=f"r{f}_{i}", type=kind, floor=f, rect=rect))
+        floor.open_edges = _open_edges(floor, assignment.open_pairs, stair_rects)
+        pairs = frozenset(
+            frozenset(int(r.split("_")[1]) for r in e.rooms) for e in floor.open_edges
+        )
+        doors = connect_rooms(floor, stair_rects, rng, pairs)
+        if doors is not None:
+            floor.doors = doors
+            _group_open_rooms(floor)
+            return
+    raise RuntimeError(f"could not connect the rooms of floor {f}")
+
+
+def _open_edges(
+    floor: FloorPlan, pairs: list[tuple[int, int]], stair_rects: list[Rect]
+) -> list[Opening]:
+    """Open spans for the assignment's pairs (rectangle index -1 is the hallway)."""
+    out = []
+    for i, j in pairs:
+        a, b = floor.rooms[i + 1], floor.rooms[j + 1]
+        span = shared_border(a.rect, b.rect)
+        if span is None:
+            continue
+        hall_pair = i < 0 or j < 0
+        blocked = blocked_intervals(floor, stair_rects, span[0], span[1]) if hall_pair else []
+        minimum = FOYER_MIN if hall_pair or "entryway" in (a.type, b.type) else OPEN_MIN
+        edge = open_edge(floor, (a.id, b.id), a.rect, b.rect, blocked, minimum)
+        if edge is not None:
+            out.append(edge)
+    return out
+
+
+def _group_open_rooms(floor: FloorPlan) -> None:
+    """Give the rooms of each open space one ``open_group`` name."""
+    parent = {room.id: room.id for room in floor.rooms}
+
+    def root(room_id: str) -> str:
+        while parent[room_id] != room_id:
+            room_id = parent[room_id]
+        return room_id
+
+    for edge in floor.open_edges:
+        a, b = (root(r) for r in edge.rooms)
+        parent[max(a, b)] = min(a, b)
+    members: dict[str, int] = {}
+    for room in floor.rooms:
+        members[root(room.id)] = members.get(root(room.id), 0) + 1
+    names = {
+        r: f"open{floor.index}_{k}" for k, r in enumerate(r for r, n in members.items() if n > 1)
+    }
+    for room in floor.rooms:
+        room.open_group = names.get(root(room.id), "")

@@ -2,15 +2,16 @@
 
 Doors form a spanning tree over the room adjacency graph rooted at the hallway (every
 room reachable), plus a few extra doors between rooms that often connect (kitchen and
-dining room, …). Windows sit on exterior walls. Wall lines are the union of room
-borders.
+dining room, …); rooms joined by an open border (:mod:`ingest.synthetic.open_plan`)
+need no door between them. Windows sit on exterior walls. Wall lines are the union of
+room borders, open spans left out.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ingest.synthetic.geom import EPS, Rect, subtract_intervals
+from ingest.synthetic.geom import EPS, Rect, shared_border, subtract_intervals
 from ingest.synthetic.plan import DOOR_HEIGHT, WALL_T, FloorPlan, HousePlan, Opening
 from ingest.synthetic.walls import add_windows, build_walls
 
@@ -23,22 +24,7 @@ EXTRA_DOOR_PAIRS = {
 }
 
 
-def shared_wall(a: Rect, b: Rect) -> tuple[str, float, float, float] | None:
-    """The wall line two touching rectangles share: ``(axis, coord, lo, hi)``."""
-    for xa, xb in ((a.x1, b.x0), (a.x0, b.x1)):
-        if abs(xa - xb) < EPS:
-            lo, hi = max(a.y0, b.y0), min(a.y1, b.y1)
-            if hi - lo > EPS:
-                return ("y", xa, lo, hi)
-    for ya, yb in ((a.y1, b.y0), (a.y0, b.y1)):
-        if abs(ya - yb) < EPS:
-            lo, hi = max(a.x0, b.x0), min(a.x1, b.x1)
-            if hi - lo > EPS:
-                return ("x", ya, lo, hi)
-    return None
-
-
-def _blocked(
+def blocked_intervals(
     floor: FloorPlan, stair_rects: list[Rect], axis: str, coord: float
 ) -> list[tuple[float, float]]:
     """Intervals of a wall line that stairs or stairwells make unusable for doors."""
@@ -83,10 +69,27 @@ def _door(
     )
 
 
+def _spread(linked: set[int], open_pairs: frozenset[frozenset[int]]) -> None:
+    """Add to ``linked`` every room joined to it through open borders."""
+    grew = True
+    while grew:
+        grew = False
+        for pair in open_pairs:
+            if len(pair & linked) == 1:
+                linked |= pair
+                grew = True
+
+
 def connect_rooms(
-    floor: FloorPlan, stair_rects: list[Rect], rng: np.random.Generator
+    floor: FloorPlan,
+    stair_rects: list[Rect],
+    rng: np.random.Generator,
+    open_pairs: frozenset[frozenset[int]] = frozenset(),
 ) -> list[Opening] | None:
-    """Doors joining every room of ``floor`` to its hallway (room 0); None if impossible."""
+    """Doors joining every room of ``floor`` to its hallway (room 0); None if impossible.
+
+    ``open_pairs`` (room indices) are joined by an open border already and get no door.
+    """
     rooms = floor.rooms
     width = round(float(rng.uniform(0.85, 1.0)), 2)
     options: dict[
@@ -94,10 +97,10 @@ def connect_rooms(
     ] = {}
     for i in range(len(rooms)):
         for j in range(i + 1, len(rooms)):
-            span = shared_wall(rooms[i].rect, rooms[j].rect)
-            if span is None:
+            span = shared_border(rooms[i].rect, rooms[j].rect)
+            if span is None or frozenset((i, j)) in open_pairs:
                 continue
-            parts = _usable(span, _blocked(floor, stair_rects, span[0], span[1]), width)
+            parts = _usable(span, blocked_intervals(floor, stair_rects, span[0], span[1]), width)
             if parts:
                 options[(i, j)] = (span, parts)
     doors: list[Opening] = []
@@ -106,6 +109,7 @@ def connect_rooms(
         if i == 0:
             doors.append(_door(floor, span, parts, [rooms[0].id, rooms[j].id], rng, width))
             linked.add(j)
+    _spread(linked, open_pairs)
     while len(linked) < len(rooms):
         frontier = [(i, j) for (i, j) in sorted(options) if (i in linked) != (j in linked)]
         if not frontier:
@@ -114,6 +118,7 @@ def connect_rooms(
         span, parts = options[(i, j)]
         doors.append(_door(floor, span, parts, [rooms[i].id, rooms[j].id], rng, width))
         linked |= {i, j}
+        _spread(linked, open_pairs)
     doored = {frozenset(d.rooms) for d in doors}
     for (i, j), (span, parts) in sorted(options.items()):
         pair = frozenset((rooms[i].type, rooms[j].type))
@@ -125,10 +130,31 @@ def connect_rooms(
 
 
 def _front_door(plan: HousePlan, rng: np.random.Generator) -> Opening:
-    hall = plan.floors[0].rooms[0].rect
-    y = hall.y0 if rng.random() < 0.5 else hall.y1
+    """The front door: in the foyer's street wall when the house has a foyer (an
+    entryway on the ground floor touching the front or back of the house), else at an
+    end of the ground-floor hallway."""
+    fp = plan.footprint
+    entry = next(
+        (
+            r
+            for r in plan.floors[0].rooms
+            if r.type == "entryway"
+            and (abs(r.rect.y0 - fp.y0) < EPS or abs(r.rect.y1 - fp.y1) < EPS)
+        ),
+        None,
+    )
     width = 1.0
-    lo = round(hall.cx - width / 2, 3)
+    if entry is not None:
+        r = entry.rect
+        y = r.y0 if abs(r.y0 - fp.y0) < EPS else r.y1
+        a, b = r.x0 + CORNER_MARGIN, r.x1 - CORNER_MARGIN - width
+        lo = round(float(rng.uniform(a, b)) if b > a else r.cx - width / 2, 3)
+        room = entry
+    else:
+        room = plan.floors[0].rooms[0]
+        hall = room.rect
+        y = hall.y0 if rng.random() < 0.5 else hall.y1
+        lo = round(hall.cx - width / 2, 3)
     return Opening(
         id="",
         kind="door",
@@ -139,7 +165,7 @@ def _front_door(plan: HousePlan, rng: np.random.Generator) -> Opening:
         hi=lo + width,
         z0=0.0,
         z1=DOOR_HEIGHT,
-        rooms=[plan.floors[0].rooms[0].id],
+        rooms=[room.id],
     )
 
 
@@ -157,3 +183,5 @@ def add_openings(plan: HousePlan, rng: np.random.Generator) -> None:
         for window in floor.windows:
             window.id = f"w{n_window}"
             n_window += 1
+    for n, edge in enumerate(e for floor in plan.floors for e in floor.open_edges):
+        edge.id = f"p{n}"

@@ -21,6 +21,7 @@ WALL_QUARTER = {"N": 0, "E": 3, "S": 2, "W": 1}
 SIDES = ("N", "E", "S", "W")
 GAP = 0.03  # minimum clearance between pieces of furniture
 FLAT = 0.05  # objects lower than this (rugs) lie under furniture and are not obstacles
+OPEN_CLEAR = 0.55  # depth kept clear on each side of an open border
 
 
 @dataclass(eq=False)
@@ -35,7 +36,7 @@ class Placed:
     z: float  # bottom, world frame
     dims: tuple[float, float, float]  # width, depth, height before turning
     quarter: int
-    colour: str
+    colour: str  # a classic palette name, or the basic colour term of ``rgb``
     material: str
     scale: float = 1.0
     structural: bool = False
@@ -43,6 +44,8 @@ class Placed:
     params: dict[str, Any] = field(default_factory=dict)
     id: str = ""
     instance_id: int = 0
+    rgb: tuple[int, int, int] | None = None  # sampled sRGB albedo (None: the palette colour)
+    raw: str = ""  # the Matterport3D raw category name it would be annotated with
 
     @property
     def extent(self) -> tuple[float, float]:
@@ -72,6 +75,16 @@ class Placed:
         return self.dims[2] < FLAT
 
 
+@dataclass
+class AreaPlan:
+    """A placed functional group."""
+
+    label: str
+    room_id: str
+    members: list[Placed] = field(default_factory=list)
+    id: str = ""
+
+
 def size_word(scale: float) -> str:
     """small / medium / large from an object's scale relative to its kind."""
     if scale < 0.93:
@@ -94,16 +107,17 @@ class RoomSpace:
         """The room rectangle inside its walls."""
         return self.room.rect.grown(-WALL_T / 2 - 0.01)
 
-    def fits(self, obj: Placed, ignore: tuple[Placed, ...] = ()) -> bool:
-        """Whether ``obj`` stands inside the room without touching anything."""
+    def fits(self, obj: Placed, ignore: tuple[Placed, ...] = (), keepout: bool = True) -> bool:
+        """Whether ``obj`` stands inside the room without touching anything (keep-out
+        zones left aside when not ``keepout``: things standing on a supporter)."""
         if not self.interior.contains_rect(obj.footprint):
             return False
-        return obj.flat or self.clear(obj.box, ignore)
+        return obj.flat or self.clear(obj.box, ignore, keepout)
 
-    def clear(self, box: Box, ignore: tuple[Placed, ...] = ()) -> bool:
+    def clear(self, box: Box, ignore: tuple[Placed, ...] = (), keepout: bool = True) -> bool:
         """Whether the world ``box`` is free of keep-out zones and placed objects."""
         rel = Box(box.rect, box.z0 - self.floor.z, box.z1 - self.floor.z)
-        if any(rel.overlaps(k) for k in self.keepout):
+        if keepout and any(rel.overlaps(k) for k in self.keepout):
             return False
         return not any(
             box.overlaps(o.box, GAP) for o in self.objects if not o.flat and o not in ignore
@@ -130,7 +144,8 @@ class RoomSpace:
 
 
 def build_keepout(space: RoomSpace) -> None:
-    """Keep doorways, the space in front of windows and stair zones clear."""
+    """Keep doorways, the space in front of windows, stair zones and a strip along open
+    borders clear."""
     fl, room = space.floor, space.room
     near = room.rect.grown(0.05)
     for door in fl.doors:
@@ -149,6 +164,10 @@ def build_keepout(space: RoomSpace) -> None:
     for zone in fl.stair_zones:
         if zone.overlaps(near):
             space.keepout.append(Box(zone, 0.0, fl.height))
+    for edge in fl.open_edges:
+        if room.id in edge.rooms:
+            # an open border stays clear, like a wide doorway, on both sides
+            space.keepout.append(Box(edge.rect(2 * OPEN_CLEAR), 0.0, fl.height - 0.3))
 
 
 def make_placed(label: str, space: RoomSpace, scale: float, colour: str, material: str) -> Placed:

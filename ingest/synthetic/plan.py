@@ -26,6 +26,7 @@ class RoomPlan:
     floor: int
     rect: Rect
     name: str = ""
+    open_group: str = ""  # rooms of one open-plan space share it ("" = walled room)
 
 
 @dataclass
@@ -37,7 +38,7 @@ class Opening:
     """
 
     id: str
-    kind: str  # "door" | "window"
+    kind: str  # "door" | "window" | "open" (a border without a wall)
     floor: int
     axis: str
     coord: float
@@ -132,6 +133,7 @@ class FloorPlan:
     windows: list[Opening] = field(default_factory=list)
     holes: list[Rect] = field(default_factory=list)  # stairwell openings in this slab
     stair_zones: list[Rect] = field(default_factory=list)  # stairs + landings, kept clear
+    open_edges: list[Opening] = field(default_factory=list)  # borders without walls
 
     def room_at(self, x: float, y: float) -> RoomPlan | None:
         """The room containing the plan point, if any."""
@@ -149,6 +151,7 @@ class HousePlan:
     level_spacing: float
     floors: list[FloorPlan] = field(default_factory=list)
     stairs: list[StairPlan] = field(default_factory=list)
+    style: str = "classic"  # the generator that drew it ("real" or "classic")
 
     def room(self, room_id: str) -> RoomPlan:
         """The room with ``room_id`` (KeyError if absent)."""

@@ -120,7 +120,7 @@ class _Builder:
     def _distinguish(self, base: ObjectSpec, a: ObjectGT) -> ObjectSpec | None:
         options = [replace(base, relations=[r]) for r in self.f.relation(a, limit=3)]
         colour = a.attributes.get("colour")
-        if isinstance(colour, str):
+        if isinstance(colour, str) and self.f.colour_clear(a):
             options.append(replace(base, attributes=[AttributeConstraint("colour", colour)]))
         return next((s for s in options if [o.id for o in self.match(s)] == [a.id]), None)
 
@@ -169,6 +169,8 @@ class _Builder:
         found = self.match(base)
         colour = a.attributes.get("colour")
         if not isinstance(colour, str) or not 2 <= len(found) <= (2 if then_other else 4):
+            return None
+        if not self.f.colour_clear(a):
             return None
         second = replace(base, attributes=[AttributeConstraint("colour", colour)])
         if [o.id for o in self.match(second)] != [a.id]:

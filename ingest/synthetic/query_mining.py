@@ -12,6 +12,7 @@ import random
 from collections.abc import Callable, Iterator
 from dataclasses import replace
 
+from ingest.synthetic.colour_naming import is_clear
 from ingest.synthetic.query_templates import FUNCTION_WORDING, UNSCOPED_FUNCTIONS
 from ingest.synthetic.query_text import labels_for_noun, noun_words
 from ingest.synthetic.scene import ObjectGT, Scene
@@ -101,6 +102,13 @@ class SceneFacts:
         if obj.floor == self.levels[-1]:
             forms.append(FloorConstraint(relative="top", negated=negated))
         return self.rng.choice(forms)
+
+    def colour_clear(self, obj: ObjectGT) -> bool:
+        """Whether people would name ``obj``'s colour without hesitating: always for a
+        palette colour, for a sampled one (``attributes["rgb"]``) when it lies well
+        inside its basic colour term (:func:`~ingest.synthetic.colour_naming.is_clear`)."""
+        rgb = obj.attributes.get("rgb")
+        return rgb is None or is_clear(tuple(rgb))
 
     def looks_alike(self, spec: ObjectSpec, obj: ObjectGT) -> list[ObjectGT]:
         """Other objects the spec's noun also names."""

@@ -73,6 +73,12 @@ def _d_not_relation(f: SceneFacts) -> Iterator[ObjectSpec]:
                     yield replace(base, relations=[rel], **scope)
 
 
+def _in_noun(spec: ObjectSpec, attr: AttributeConstraint) -> bool:
+    """Whether the attribute's value is a word of the spec's noun ("paper" in "toilet
+    paper"): saying it again reads badly and says nothing."""
+    return attr.value in spec.noun.split()
+
+
 def _d_not_attribute(f: SceneFacts) -> Iterator[ObjectSpec]:
     for a in f.anchors():
         base = f.target(a)
@@ -80,8 +86,12 @@ def _d_not_attribute(f: SceneFacts) -> Iterator[ObjectSpec]:
             for o in f.looks_alike(base, a)[:4]:
                 for key in ("colour", "material"):
                     value = o.attributes.get(key)
+                    if key == "colour" and not (f.colour_clear(a) and f.colour_clear(o)):
+                        continue
                     if isinstance(value, str) and value != a.attributes.get(key):
                         attr = AttributeConstraint(key, value, negated=True)
+                        if _in_noun(base, attr):
+                            continue
                         yield replace(base, attributes=[attr], **scope)
 
 
@@ -114,8 +124,13 @@ def _e_attributes(keys: tuple[str, ...]) -> Miner:
             values = [a.attributes.get(k) for k in keys]
             if not all(isinstance(v, str) for v in values):
                 continue
+            if "colour" in keys and not f.colour_clear(a):
+                continue
             attrs = [AttributeConstraint(k, str(v)) for k, v in zip(keys, values, strict=True)]
-            spec = _narrowest(f, a, replace(f.target(a), attributes=attrs))
+            target = f.target(a)
+            if any(_in_noun(target, x) for x in attrs):
+                continue  # "a glass glass"
+            spec = _narrowest(f, a, replace(target, attributes=attrs))
             if spec is not None:
                 yield spec
 

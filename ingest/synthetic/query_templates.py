@@ -79,10 +79,60 @@ FUNCTION_WORDING: dict[str, tuple[str, str | None, str]] = {
     "look outside": ("look outside", "look outside through", "I want to see the weather."),
     "go upstairs": ("go upstairs", None, "I left my phone on the upper floor."),
     "go downstairs": ("go downstairs", None, "I left my keys on the lower floor."),
+    "bake": ("bake something", "bake a cake in", "I promised to bring a cake."),
+    "blow my nose": ("blow my nose", "wipe my nose with", "I have a runny nose."),
+    "brush my teeth": ("brush my teeth", "brush my teeth with", "I just had garlic bread."),
+    "call someone": ("make a phone call", "call my sister on", "I need to call the doctor."),
+    "cool down": ("cool down", "cool the room with", "It's really hot in here."),
+    "do yoga": ("do some yoga", "do my stretches on", "My back is stiff."),
+    "exercise": ("work out", "work out on", "I want to get some exercise."),
+    "go for a ride": ("go for a bike ride", "ride", "It's a lovely day outside."),
+    "hang my coat": ("hang up my coat", "hang my coat on", "My coat is soaking wet."),
+    "iron my clothes": ("iron my shirt", "iron my shirt on", "My shirt is all wrinkled."),
+    "keep warm": ("keep warm", "wrap myself in", "I'm cold."),
+    "listen to music": ("listen to some music", "play my playlist on", "It's too quiet in here."),
+    "make coffee": ("make some coffee", "make an espresso with", "I need a coffee."),
+    "make toast": ("make some toast", "toast bread in", "I want toast for breakfast."),
+    "mop the floor": (
+        "mop the floor",
+        "clean the floor with",
+        "Someone spilled juice on the floor.",
+    ),
+    "mow the lawn": ("mow the lawn", "cut the grass with", "The grass is far too long."),
+    "pack for a trip": (
+        "pack for my trip",
+        "pack my things in",
+        "I'm leaving for a week tomorrow.",
+    ),
+    "play": ("play", "play with", "The kids are bored."),
+    "play darts": ("play darts", None, "I want to practise my aim."),
+    "play music": ("play some music", "play a song on", "I feel like making music."),
+    "play ping pong": ("play ping pong", None, "I want a quick game of table tennis."),
+    "play pool": ("play pool", None, "I want to shoot some pool."),
+    "play video games": ("play video games", "play games on", "I have a new game to try."),
+    "print": ("print a document", "print my tickets on", "I need a paper copy of this."),
+    "put out a fire": ("put out a fire", "put out the fire with", "Something is burning!"),
+    "reach high places": ("reach the top shelf", "climb", "I can't reach the top shelf."),
+    "store documents": ("file some papers", "keep my documents in", "My papers are a mess."),
+    "store shoes": ("put my shoes away", "keep my shoes on", "My shoes are all over the floor."),
+    "sweep the floor": ("sweep the floor", "sweep up with", "There is dust everywhere."),
+    "throw away trash": ("throw something away", "throw this wrapper in", "I have some rubbish."),
+    "type": ("type something", "type on", "I have a long email to write."),
+    "vacuum the floor": (
+        "vacuum the floor",
+        "clean the carpet with",
+        "There are crumbs everywhere.",
+    ),
+    "warm up": ("warm up", "warm my hands at", "I'm freezing."),
+    "water the plants": ("water the plants", "water the plants with", "The plants look dry."),
+    "weigh myself": ("weigh myself", "weigh myself on", "I wonder how much I weigh."),
+    "write": ("write something down", "write notes on", "I need to sketch an idea."),
 }
 
 # Functions that make no sense with a place attached ("go for a drive upstairs").
-UNSCOPED_FUNCTIONS = frozenset({"drive", "go upstairs", "go downstairs"})
+UNSCOPED_FUNCTIONS = frozenset(
+    {"drive", "go upstairs", "go downstairs", "go for a ride", "mow the lawn"}
+)
 
 
 def _sp(text: str) -> str:

@@ -50,7 +50,19 @@ SUPERLATIVE_WORDS = {
 SIZE_ADJECTIVES = {"small": "small", "medium": "medium-sized", "large": "large"}
 MATERIAL_ADJECTIVES = {"wood": "wooden"}
 ORDINALS = ("first", "second", "third", "fourth", "fifth")
-_IRREGULAR_PLURALS = {"shelf": "shelves", "bookshelf": "bookshelves", "stairs": "stairs"}
+_IRREGULAR_PLURALS = {
+    "shelf": "shelves",
+    "bookshelf": "bookshelves",
+    "stairs": "stairs",
+    "mouse": "mice",
+    "shelves": "shelves",
+    "shoes": "shoes",
+    "tissues": "tissues",
+}
+# Nouns counted in pieces rather than as items: no plural, "some" rather than "a".
+UNCOUNTABLE = frozenset(
+    {"clothes", "clothing", "blinds", "cosmetics", "makeup", "toilet paper", "luggage", "shelving"}
+)
 _ABBREVIATIONS = re.compile(r"\btv(s?)\b")
 
 
@@ -76,6 +88,11 @@ def plural(noun: str) -> str:
     """English plural of a (possibly multi-word) noun."""
     if noun.startswith("chest of "):
         return "chests" + noun[len("chest") :]
+    if noun in UNCOUNTABLE:
+        return noun
+    if noun.startswith(("pair of ", "box of ", "bowl of ", "bar of ", "can of ")):
+        first, _, rest = noun.partition(" of ")
+        return f"{plural(first)} of {rest}"
     head, _, last = noun.rpartition(" ")
     if last in _IRREGULAR_PLURALS:
         word = _IRREGULAR_PLURALS[last]
@@ -148,7 +165,7 @@ class Phrasing:
         s = spec or self.spec
         body = " ".join(x for x in (self.adjectives(s, key), self.noun(s, det == "plural")) if x)
         if det == "a":
-            return f"{article(body)} {body}"
+            return f"{'some' if self.noun(s) in UNCOUNTABLE else article(body)} {body}"
         return body if det == "bare" else f"the {body}"
 
     # -- places -------------------------------------------------------------------

@@ -6,8 +6,9 @@ is the hit face's instance id. Colour is Lambertian shading of the face albedo u
 point light at the ceiling of the room the hit point is in, a weak sky light and an
 ambient term, with a small procedural texture so flat-coloured objects vary across
 their surface, and a material look per object part (grain, weave, speckle, specular
-sheen: :mod:`ingest.synthetic.render_materials`); optional shadow rays darken what the
-room light cannot see.
+sheen, reflections of the room on metal, glass and glaze:
+:mod:`ingest.synthetic.render_materials`); optional shadow rays darken what the room
+light cannot see.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from embreex.mesh_construction import TriangleMesh
 
 from ingest.synthetic.grid import Grid
 from ingest.synthetic.plan import HousePlan
-from ingest.synthetic.render_materials import pattern, specular
+from ingest.synthetic.render_materials import finish, pattern, specular
 from ingest.synthetic.world import WorldMesh
 from inherit_sg.model import Intrinsics, Pose
 
@@ -211,9 +212,10 @@ class Renderer:
         light = (
             lamp + np.float32(SKY_LIGHT) * np.maximum(sky, 0.0) + np.float32(AMBIENT)
         ) * surface
-        out = self.world.albedo[faces] * light[:, None]
+        albedo = self.world.albedo[faces]
+        out = albedo * light[:, None]
         if codes is not None:
-            out += shine[:, None]
+            out = finish(mats, out, albedo, shine, normals, dirs)
         return out
 
 

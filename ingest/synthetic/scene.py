@@ -39,6 +39,13 @@ class RoomGT:
     floor: int
     polygon: Polygon
     name: str = ""  # e.g. "kitchen", "bedroom 2"
+    # Source annotations, for readers of real layouts (added with a default so older
+    # scene.json files load): e.g. an MP3D region's label code and category name
+    # ({"mp3d_code": "v", "mp3d_category": "tv", "mp3d_index": 4}). Generated houses of
+    # the default style give the type's "mp3d_code" and, for the rooms of an open-plan
+    # space, "open_group" and "open_to" (the rooms it joins without a wall); classic ones
+    # none.
+    attributes: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -86,7 +93,9 @@ class ObjectGT:
     bbox_min: Vec3
     bbox_max: Vec3
     area_id: str | None = None
-    attributes: dict[str, Any] = field(default_factory=dict)  # colour, material, size
+    # colour, material, size; generated houses of the default style add "rgb" (the
+    # sampled colour, "colour" being its basic term), "mp3d_category" and "mpcat40"
+    attributes: dict[str, Any] = field(default_factory=dict)
     supported_by: str | None = None  # id of the object it stands on ("on")
     structural: bool = False  # door frames, windows: objects, but part of the building
 

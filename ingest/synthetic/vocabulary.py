@@ -3,23 +3,44 @@
 It is shared by the house generator (what to place and how it looks) and the query
 generator (how people name things). Retrieval never imports it: the system must earn
 its understanding of words from its own lexicon and embeddings.
+
+Two worlds draw from it: the classic one (nine room types, the ``CLASSIC_KINDS``, the
+twelve-colour ``COLOURS`` palette, ``AREA_TEMPLATES``) and the default real-world one
+(Matterport3D room types, every kind of ``OBJECT_KINDS``, continuous colours named by
+:mod:`ingest.synthetic.colour_naming`, :mod:`ingest.synthetic.room_contents`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import replace
 
-# Room types with the words people use for them.
+from ingest.synthetic.catalogue import CLASSIC_EXTRAS, NEW_KINDS
+from ingest.synthetic.kinds import ObjectKind
+
+# Room types with the words people use for them: the classic world's nine and the
+# Matterport3D region categories the real-world generator draws (ingest.synthetic.taxonomy).
 ROOM_SYNONYMS: dict[str, tuple[str, ...]] = {
     "bedroom": ("bedroom", "sleeping room"),
     "bathroom": ("bathroom", "washroom", "restroom"),
+    "toilet": ("toilet", "powder room", "half bath", "guest toilet"),
     "kitchen": ("kitchen",),
-    "living room": ("living room", "lounge", "sitting room"),
+    "living room": ("living room", "sitting room", "front room"),
+    "family room": ("family room", "den", "lounge"),
+    "tv room": ("tv room", "media room", "television room"),
     "dining room": ("dining room",),
     "office": ("office", "study", "home office"),
     "hallway": ("hallway", "corridor", "hall"),
-    "laundry room": ("laundry room", "utility room"),
+    "entryway": ("entryway", "foyer", "entrance hall"),
+    "closet": ("closet", "walk-in closet"),
+    "laundry room": ("laundry room", "laundry", "mudroom"),
+    "utility room": ("utility room", "tool room", "boiler room"),
     "garage": ("garage",),
+    "porch": ("porch", "terrace", "deck"),
+    "balcony": ("balcony",),
+    "library": ("library", "reading room"),
+    "rec room": ("rec room", "game room", "playroom"),
+    "gym": ("gym", "home gym", "workout room"),
+    "bar": ("bar", "bar room"),
 }
 
 # Named palette: name -> sRGB albedo. Names are what descriptions and queries use.
@@ -47,31 +68,19 @@ MATERIALS: tuple[str, ...] = (
     "glass",
     "ceramic",
     "stone",
+    "wicker",
+    "paper",
+    "concrete",
 )
 
 
-@dataclass(frozen=True)
-class ObjectKind:
-    """How one kind of object looks, where it goes and what it is for."""
-
-    label: str
-    size: tuple[float, float, float]  # typical width, depth, height in metres
-    synonyms: tuple[str, ...] = ()
-    functions: tuple[str, ...] = ()  # e.g. "sit", "sleep", "wash hands"
-    colours: tuple[str, ...] = tuple(COLOURS)
-    materials: tuple[str, ...] = ("wood",)
-    surface: bool = False  # small objects can stand on it
-    small: bool = False  # stands on a surface rather than the floor
-    wall: bool = False  # placed against a wall
-    mount_height: float = 0.0  # bottom height above the floor (wall-mounted things)
-
-
 def _k(label: str, size: tuple[float, float, float], **kw: object) -> ObjectKind:
+    kw.setdefault("colours", tuple(COLOURS))
     return ObjectKind(label, size, **kw)  # type: ignore[arg-type]
 
 
 # fmt: off
-OBJECT_KINDS: dict[str, ObjectKind] = {
+CLASSIC_KINDS: dict[str, ObjectKind] = {
     k.label: k
     for k in (
         _k('bed', (1.6, 2.0, 0.55), synonyms=('bed',), functions=('sleep', 'lie down'), colours=('white', 'blue', 'grey', 'beige', 'green'), materials=('wood', 'fabric'), wall=True),
@@ -128,8 +137,15 @@ OBJECT_KINDS: dict[str, ObjectKind] = {
 }
 # fmt: on
 
-# What each room type contains, as functional groups (the areas): group label -> members.
-# The generator picks groups for a room and places each group together.
+# Every kind of both worlds: the classic kinds (with their catalogue fields added) and
+# the real-world catalogue's.
+OBJECT_KINDS: dict[str, ObjectKind] = {
+    label: replace(kind, **CLASSIC_EXTRAS.get(label, {})) for label, kind in CLASSIC_KINDS.items()
+} | {kind.label: kind for kind in NEW_KINDS}
+
+# What each room type of the classic world contains, as functional groups (the areas):
+# group label -> members. The generator picks groups for a room and places each group
+# together. The real-world generator uses ingest.synthetic.room_contents instead.
 AREA_TEMPLATES: dict[str, dict[str, tuple[str, ...]]] = {
     "bedroom": {
         "sleeping area": ("bed", "nightstand", "nightstand", "table lamp", "book"),

@@ -8,7 +8,13 @@ from collections import defaultdict
 import numpy as np
 
 from ingest.synthetic.geom import EPS, Rect, subtract_intervals
+from ingest.synthetic.open_plan import without_open_spans
 from ingest.synthetic.plan import FloorPlan, HousePlan, Opening, WallLine
+
+# Rooms of real-world houses whose windows sit above worktops.
+WORKTOP_ROOMS = frozenset({"kitchen", "bar"})
+# Rooms whose windows are small and high.
+SMALL_WINDOW_ROOMS = frozenset({"bathroom", "laundry room", "toilet", "closet", "utility room"})
 
 
 def _exterior_edges(rect: Rect, fp: Rect) -> list[tuple[str, float, float, float]]:
@@ -34,10 +40,14 @@ def add_windows(plan: HousePlan, floor: FloorPlan, rng: np.random.Generator) -> 
         count = 2 if longest > 3.6 else 1
         if room.type == "hallway":
             count = int(rng.random() < 0.5)
-        small = room.type in ("bathroom", "laundry room")
+        if room.type == "closet":
+            count = int(rng.random() < 0.3)
+        small = room.type in SMALL_WINDOW_ROOMS
         for _ in range(count):
             width = round(float(rng.uniform(0.6, 0.8) if small else rng.uniform(0.9, 1.5)), 2)
             sill, top = (1.4, 2.1) if small else (0.9, 2.1)
+            if plan.style == "real" and room.type in WORKTOP_ROOMS:
+                sill = 1.05  # above the worktops
             choices = []
             for axis, coord, lo, hi in edges:
                 taken = [
@@ -68,7 +78,7 @@ def add_windows(plan: HousePlan, floor: FloorPlan, rng: np.random.Generator) -> 
 
 
 def build_walls(plan: HousePlan, floor: FloorPlan) -> None:
-    """Union the room borders of ``floor`` into wall lines."""
+    """Union the room borders of ``floor`` into wall lines, leaving its open spans out."""
     lines: dict[tuple[str, float], list[tuple[float, float]]] = defaultdict(list)
     for room in floor.rooms:
         r = room.rect
@@ -90,3 +100,4 @@ def build_walls(plan: HousePlan, floor: FloorPlan) -> None:
         )
         for lo, hi in merged:
             floor.walls.append(WallLine(floor.index, axis, coord, lo, hi, exterior=ext))
+    floor.walls = without_open_spans(floor, floor.walls)

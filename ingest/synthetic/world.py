@@ -18,7 +18,8 @@ from ingest.synthetic.paint import Painter
 from ingest.synthetic.placement import Placed
 from ingest.synthetic.plan import SLAB_T, WALL_T, FloorPlan, HousePlan, WallLine
 from ingest.synthetic.render_materials import material_code
-from ingest.synthetic.shapes import Part, parts_for
+from ingest.synthetic.shapes import Part
+from ingest.synthetic.shapes_real import parts_for
 from ingest.synthetic.vocabulary import COLOURS
 
 # Unit cube: 6 sides (-x, +x, -y, +y, -z, +z), two triangles each, outward winding.
@@ -35,6 +36,14 @@ _SIDE_NORMALS = np.array(
 )
 _CYL = trimesh.creation.cylinder(radius=0.5, height=1.0, sections=14)
 _BALL = trimesh.creation.icosphere(subdivisions=1, radius=0.5)
+_CYL_V, _CYL_F = np.asarray(_CYL.vertices), np.asarray(_CYL.faces)
+# Unit primitives by part kind: cylinders along z, y (a disc facing the front) and x.
+_MESHES: dict[str, tuple[np.ndarray, np.ndarray]] = {
+    "cyl": (_CYL_V, _CYL_F),
+    "ycyl": (_CYL_V[:, [0, 2, 1]], _CYL_F),
+    "xcyl": (_CYL_V[:, [2, 1, 0]], _CYL_F),
+    "ball": (np.asarray(_BALL.vertices), np.asarray(_BALL.faces)),
+}
 
 
 def srgb_to_linear(rgb: np.ndarray) -> np.ndarray:
@@ -111,17 +120,20 @@ def _rotate(points: np.ndarray, quarter: int) -> np.ndarray:
 
 
 def _add_part(b: _Builder, obj: Placed, part: Part) -> None:
-    colour = np.asarray(part.rgb if part.rgb is not None else COLOURS[obj.colour], float)
+    own = obj.rgb if obj.rgb is not None else COLOURS[obj.colour]
+    colour = np.asarray(part.rgb if part.rgb is not None else own, float)
     rgb = colour * (part.shade if part.rgb is None else 1.0)
     if part.prim == "box":
         verts, faces = _CUBE_V, _CUBE_F
     else:
-        mesh = _CYL if part.prim == "cyl" else _BALL
-        verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+        verts, faces = _MESHES[part.prim]
     local = verts * np.asarray(part.size) + np.asarray(part.center)
     world = _rotate(local, obj.quarter) + np.array([obj.x, obj.y, obj.z])
     # parts in their own colour (a lampshade, a screen) are not of the object's material
-    code = material_code(obj.material) if part.rgb is None else 0
+    if part.material is not None:
+        code = material_code(part.material)
+    else:
+        code = material_code(obj.material) if part.rgb is None else 0
     b.add(world, faces, obj.instance_id, rgb, 0.06, code)
 
 

@@ -58,6 +58,13 @@ class NoiseLevel(StrEnum):
     noisy = "noisy"
 
 
+class HouseStyle(StrEnum):
+    """Generators of synthetic houses (see ingest.synthetic.generate)."""
+
+    real = "real"
+    classic = "classic"
+
+
 # Options shared by the commands that render walks.
 NoiseOption = Annotated[NoiseLevel, typer.Option(help="Perception noise level.")]
 WidthOption = Annotated[int, typer.Option(min=16, max=4096, help="Image width.")]
@@ -100,6 +107,23 @@ def generate(
         int | None,
         typer.Option(min=4, max=12, help="Rooms per storey incl. the hallway (default 5-8)."),
     ] = None,
+    style: Annotated[
+        HouseStyle,
+        typer.Option(
+            help="real: Matterport3D room types and object categories in real proportions, "
+            "open-plan ground floors, continuous colours; classic: the earlier generator "
+            "(nine room types, twelve named colours)."
+        ),
+    ] = HouseStyle.real,
+    open_plan: Annotated[
+        bool | None,
+        typer.Option(
+            "--open-plan/--no-open-plan",
+            help="Force an open-plan ground floor (kitchen, dining and living rooms without "
+            "walls between them) on or off; default: drawn, about two houses in five.",
+            show_default=False,
+        ),
+    ] = None,
     noise: NoiseOption = NoiseLevel.clean,
     width: WidthOption = 640,
     height: HeightOption = 480,
@@ -109,11 +133,14 @@ def generate(
     force: ForceOption = False,
     as_json: JsonOption = False,
 ) -> None:
-    """Generate a house, walk through every room and write an isg dataset folder."""
+    """Generate a house, walk through every room and write an isg dataset folder.
+
+    Default houses: Matterport3D room types and objects in real proportions, open-plan floors.
+    """
     from ingest.synthetic.generate import generate_house, write_dataset
 
     _prepare_out(out, force)
-    house = generate_house(seed, floors, rooms_per_floor)
+    house = generate_house(seed, floors, rooms_per_floor, style=style.value, open_plan=open_plan)
     summary = _with_progress(
         as_json,
         lambda progress: write_dataset(

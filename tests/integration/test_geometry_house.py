@@ -18,7 +18,7 @@ geo_eval = pytest.importorskip("inherit_sg.eval.geometry")
 @pytest.fixture(scope="module")
 def two_floor_house(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("house") / "isg"
-    house = generate.generate_house(8, 2)
+    house = generate.generate_house(8, 2, open_plan=False)  # rooms walled: doors divide them
     generate.write_dataset(house, out, width=160, height=120, workers=1)
     return out
 

@@ -94,7 +94,7 @@ def test_mask_limits_the_pixels_and_tiny_masks_say_nothing() -> None:
 
 
 def test_render_material_codes_patterns_and_specular() -> None:
-    assert material_code("Wood") == MATERIAL_CODE["wood"] and material_code("paper") == 0
+    assert material_code("Wood") == MATERIAL_CODE["wood"] and material_code("unobtainium") == 0
     pts = _plane_points().astype(np.float32)
     generic = np.full(len(pts), 0.97, np.float32)
     assert np.array_equal(pattern(np.zeros(len(pts), np.uint8), pts, generic), generic)

@@ -6,17 +6,20 @@ from collections import defaultdict
 
 import pytest
 
-from ingest.synthetic.arrange import SHELF_LEVELS
+from ingest.synthetic.arrange import support_spots
+from ingest.synthetic.catalogue import REAL_MATERIALS
+from ingest.synthetic.colour_naming import BASIC_TERMS, colour_term
 from ingest.synthetic.generate import generate_house
 from ingest.synthetic.geom import Rect
 from ingest.synthetic.vocabulary import COLOURS, OBJECT_KINDS, SIZE_WORDS
 
-SEEDS = (0, 7, 21)
+HOUSES = ((0, "real"), (7, "real"), (21, "real"), (7, "classic"))
 
 
-@pytest.fixture(scope="module", params=SEEDS)
+@pytest.fixture(scope="module", params=HOUSES, ids=[f"{s}-{k}" for s, k in HOUSES])
 def house(request):
-    return generate_house(request.param, 2)
+    seed, style = request.param
+    return generate_house(seed, 2, style=style)
 
 
 def _box(obj):
@@ -41,25 +44,32 @@ def test_floor_standing_furniture_does_not_interpenetrate(house):
 
 def test_small_objects_rest_on_their_supporter(house):
     scene = house.scene
+    real = bool(scene.rooms[0].attributes)  # real-world rooms carry their region codes
+    placed = {o.id: o for o in house.objects}
     small = [o for o in scene.objects if OBJECT_KINDS[o.label].small]
-    assert small and all(o.supported_by is not None for o in small)
+    assert small
     for obj in small:
+        kind = OBJECT_KINDS[obj.label]
+        if obj.supported_by is None:  # on the floor or hung on a wall, where its kind may be
+            assert {"floor", "wall"} & set(kind.rests_on), obj.label
+            continue
         sup = scene.object(obj.supported_by)
-        assert OBJECT_KINDS[sup.label].surface
-        levels = [sup.bbox_max[2]]
-        if sup.label == "bookshelf":
-            h = sup.bbox_max[2] - sup.bbox_min[2]
-            levels += [sup.bbox_min[2] + f * h for f in SHELF_LEVELS]
-        assert min(abs(obj.bbox_min[2] - z) for z in levels) < 2e-3, (obj.label, sup.label)
-        foot = Rect(sup.bbox_min[0], sup.bbox_min[1], sup.bbox_max[0], sup.bbox_max[1])
-        assert foot.contains_rect(
-            Rect(obj.bbox_min[0], obj.bbox_min[1], obj.bbox_max[0], obj.bbox_max[1])
-        )
+        if real:
+            assert sup.label in kind.rests_on, (obj.label, sup.label)
+        else:
+            assert OBJECT_KINDS[sup.label].surface
+        spots = support_spots(placed[sup.id])
+        footprint = Rect(obj.bbox_min[0], obj.bbox_min[1], obj.bbox_max[0], obj.bbox_max[1])
+        assert any(
+            abs(obj.bbox_min[2] - z) < 2e-3 and top.grown(1e-3).contains_rect(footprint)
+            for z, top in spots
+        ), (obj.label, sup.label)
         assert obj.room_id == sup.room_id
 
 
 def test_objects_have_ids_rooms_and_attributes(house):
     scene = house.scene
+    real = bool(scene.rooms[0].attributes)
     ids = [o.id for o in scene.objects]
     instances = [o.instance_id for o in scene.objects]
     assert len(set(ids)) == len(ids)
@@ -67,12 +77,22 @@ def test_objects_have_ids_rooms_and_attributes(house):
     rooms = {r.id: r for r in scene.rooms}
     for obj in scene.objects:
         kind = OBJECT_KINDS[obj.label]
-        assert obj.attributes["colour"] in COLOURS
         assert obj.attributes["size"] in SIZE_WORDS
-        assert obj.attributes["material"] in kind.materials or obj.structural
+        if real:
+            # a sampled colour, named by its basic colour term
+            rgb = tuple(obj.attributes["rgb"])
+            assert obj.attributes["colour"] == colour_term(rgb) in BASIC_TERMS
+            materials = REAL_MATERIALS.get(obj.label, kind.materials)
+            assert obj.attributes["mpcat40"] == kind.mpcat40
+            assert obj.attributes["mp3d_category"] in (kind.raw or (obj.label,))
+        else:
+            assert obj.attributes["colour"] in COLOURS and "rgb" not in obj.attributes
+            materials = kind.materials
+        assert obj.attributes["material"] in materials or obj.structural
         assert obj.room_id in rooms and rooms[obj.room_id].floor == obj.floor
         if not obj.structural:
-            assert obj.attributes["colour"] in kind.colours
+            if not real:
+                assert obj.attributes["colour"] in kind.colours
             poly = rooms[obj.room_id].polygon
             x, y = obj.centroid[:2]
             assert poly[0][0] <= x <= poly[2][0] and poly[0][1] <= y <= poly[2][1]
@@ -100,8 +120,9 @@ def test_structural_objects_match_the_building(house):
     assert len(stairs) == len(scene.stairs) == 1
 
 
-def test_labels_repeat_across_rooms_and_floors():
-    scene = generate_house(4, 2).scene
+@pytest.mark.parametrize("style", ["real", "classic"])
+def test_labels_repeat_across_rooms_and_floors(style):
+    scene = generate_house(4, 2, style=style).scene
     where = defaultdict(set)
     floors = defaultdict(set)
     for o in scene.objects:

@@ -12,6 +12,7 @@ from ingest.synthetic.generate import generate_house
 from ingest.synthetic.geom import Rect
 from ingest.synthetic.layout import plan_house
 from ingest.synthetic.scene import Scene
+from ingest.synthetic.taxonomy import ROOM_TYPES
 from inherit_sg.errors import InputError
 
 
@@ -51,6 +52,7 @@ def test_rooms_per_floor_in_range(rooms):
 
 
 def _reachable(scene: Scene, floor: int) -> set[str]:
+    """Rooms of ``floor`` reachable from its first through doors and open borders."""
     rooms = [r.id for r in scene.rooms if r.floor == floor]
     links: dict[str, set[str]] = {r: set() for r in rooms}
     for door in scene.doors:
@@ -58,6 +60,9 @@ def _reachable(scene: Scene, floor: int) -> set[str]:
             a, b = door.rooms
             links[a].add(b)
             links[b].add(a)
+    for room in scene.rooms:
+        if room.floor == floor:
+            links[room.id] |= set(room.attributes.get("open_to", []))
     seen = {rooms[0]}
     todo = deque(seen)
     while todo:
@@ -67,9 +72,9 @@ def _reachable(scene: Scene, floor: int) -> set[str]:
     return seen
 
 
-@pytest.mark.parametrize("seed", range(6))
-def test_every_room_reachable_through_doors(seed):
-    scene = generate_house(seed, 3).scene
+@pytest.mark.parametrize(("seed", "style"), [(s, "real") for s in range(6)] + [(0, "classic")])
+def test_every_room_reachable_through_doors(seed, style):
+    scene = generate_house(seed, 3, style=style).scene
     for floor in scene.floors:
         rooms = {r.id for r in scene.rooms if r.floor == floor.index}
         assert _reachable(scene, floor.index) == rooms
@@ -92,11 +97,18 @@ def test_room_types_by_floor_and_names():
     scene = generate_house(5, 2, 6).scene
     ground = {r.type for r in scene.rooms if r.floor == 0}
     upper = {r.type for r in scene.rooms if r.floor == 1}
-    assert {"kitchen", "living room", "dining room", "hallway"} <= ground
+    assert {"kitchen", "living room", "hallway"} <= ground
     assert {"bedroom", "bathroom", "hallway"} <= upper
+    assert all(r.type in ROOM_TYPES for r in scene.rooms)
+    assert all(r.attributes["mp3d_code"] == ROOM_TYPES[r.type].code for r in scene.rooms)
     names = [r.name for r in scene.rooms]
     assert len(set(names)) == len(names)
     assert "hallway 2" in names
+    classic = generate_house(5, 2, 6, style="classic").scene
+    assert {"kitchen", "living room", "dining room", "hallway"} <= {
+        r.type for r in classic.rooms if r.floor == 0
+    }
+    assert all(not r.attributes for r in classic.rooms)
 
 
 def test_stairs_join_floors_through_a_stairwell():
@@ -123,3 +135,5 @@ def test_invalid_arguments_raise_input_errors():
         generate_house(1, 2, 13)
     with pytest.raises(InputError, match="seed"):
         generate_house(-1, 2)
+    with pytest.raises(InputError, match="style"):
+        generate_house(1, 2, style="baroque")
