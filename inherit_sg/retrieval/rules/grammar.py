@@ -393,6 +393,20 @@ class Grammar(Cursor):
             measure, np.superlative = np.superlative, None
             np.constraints.append(self._superlative(measure, measure, landmark_now=True))
             return True
+        before = self.peek(-1)
+        seen_from = before is not None and before.pos == "VERB"  # "the lamp seen from …"
+        if tok.has("from") and not tok.has("prep") and not landmark and np.kind == OBJECT:
+            if seen_from:
+                return False
+            # "a pillow from the bed", "a towel from the bathroom": where it is taken from
+            snap = self.state()
+            made = self.parse_pp("on") if self.np_start(1) else None
+            if not made:
+                self.restore(snap)
+                return False
+            np.places += [c for c in made if c.kind in ("room", "area", "floor")]
+            np.constraints += [c for c in made if c.kind not in ("room", "area", "floor")]
+            return True
         if tok.has("with", "without") or (
             tok.has("have") and (after_be or self.at("modal", "neg", k=-1))
         ):
@@ -585,12 +599,13 @@ class Grammar(Cursor):
                 self.restore(snap)
 
     # ---------------------------------------------------------- prepositions
-    def parse_pp(self) -> list[Constraint] | None:
+    def parse_pp(self, predicate: str | None = None) -> list[Constraint] | None:
         """A prepositional phrase → constraints (empty for deictic places); None when
-        the preposition has no object."""
+        the preposition has no object. ``predicate`` overrides the preposition's own."""
         tok = self.advance()
         neg = self.take_neg()
-        predicate = tok.tags["prep"] if not tok.has("away") else "near"
+        if predicate is None:
+            predicate = tok.tags["prep"] if not tok.has("away") else "near"
         if tok.text in lexicon().outside_prepositions:
             predicate = "inside"  # "outside the kitchen": not in it
         if tok.has("away"):

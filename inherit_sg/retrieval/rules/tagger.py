@@ -152,6 +152,8 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         span = words[i : i + n]
         if any(w.text == "," for w in span[1:]):
             continue
+        if n > 1 and span[-1].tag == "TO" and i + n < len(words) and words[i + n].tag == "VB":
+            continue  # "go to charge my phone": "to" opens a purpose, it is no "go to"
         key = tuple(w.text for w in span)
         hit = table.get(key)
         plural = False
@@ -275,6 +277,18 @@ def _open_readings(tok: Tok, word: Word) -> None:
         tok.tags.setdefault("overb", word.lemma)
 
 
+_PARTICLES = ("on", "off", "up", "down", "out")
+
+
+def _verb_with_particle(words: list[Word], i: int) -> bool:
+    """Whether the sentence-opening word ``i`` is a verb with a particle before its
+    object ("Switch on the lamp", "Turn off the TV"): a particle, then a determiner."""
+    if i + 2 >= len(words) or words[i].pos in ("DET", "PRON", "ADP", "ADV", "ADJ"):
+        return False
+    particle, after = words[i + 1], words[i + 2]
+    return particle.text in _PARTICLES and after.pos == "DET"
+
+
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -302,7 +316,17 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.plural = _ONE_WORDS[words[i].text]
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
-                imperative = words[i].tag == "VB" and first and words[i].pos == "VERB"
+                if words[i].pos == "AUX" and tok.has("modal"):
+                    # "where do I go …": an auxiliary, not the function verb of "do laundry"
+                    tok.tags.pop("fverb", None)
+                    tok.tags.pop("overb", None)
+                if first and _verb_with_particle(words, i):
+                    # "Switch on the lamp", "Light up the hall": a command, not a noun
+                    for key in ("noun", "unk", "attr"):
+                        tok.tags.pop(key, None)
+                    tok.tags.setdefault("overb", words[i].lemma)
+                    tok.pos, tok.tag = "VERB", "VB"
+                imperative = tok.tag == "VB" and first and tok.pos == "VERB"
                 if imperative and not tok.has("fverb", "prep", "noun", "room"):
                     tok.tags["seek"] = words[i].lemma
             out.append(tok)
