@@ -1,11 +1,14 @@
 """Run ``inherit-sg bench`` on a fixed set of datasets and render ``docs/benchmarks.md``.
 
-The set: generated two-floor houses at the generator's default 640×480 (seeds 201 and
-202, each with clean and with the generator's noisy perception) and the Matterport3D house of
+The set: generated two-floor houses at the generator's default 640×480 (seeds 811 and
+812, 812 with an open-plan ground floor, each with clean and with the generator's noisy
+perception), the Matterport3D house of
 ``../shared/data/real/mp3d/`` rendered with ``inherit-sg sim render-house`` (skipped
 when absent); then the request sets measured by their own scripts: the parser on the
 development set (``bench/parse.py``) and human-written requests on the MP3D house
-(``bench/mp3d_requests.py``). Each dataset is mapped from its frames by the benchmark itself, so the
+(``bench/mp3d_requests.py``); last, the earlier generator's houses (``--style classic``,
+seeds 201 and 202) so that the page shows past figures beside the new ones
+(``--only NAME[,NAME]`` runs a part of the set). Each dataset is mapped from its frames by the benchmark itself, so the
 mapping figures are measured too. Results go to ``bench/results/run_all/<name>.json``;
 the page gets tables and figures (``docs/img/bench_*.png``), including latency by map
 size from ``bench/results/retrieval.json``.
@@ -45,18 +48,39 @@ class DatasetSpec:
     kind: str  # "house" (generated) or "mp3d"
     seed: int = 0
     noise: str = "clean"
+    style: str = "real"  # the generator: "real" (default) or "classic" (the earlier one)
+    open_plan: bool | None = None  # None: drawn by the generator
 
 
+def _house(
+    seed: int, noise: str, style: str = "real", open_plan: bool | None = None
+) -> DatasetSpec:
+    prefix = "classic-" if style == "classic" else ""
+    plan = {True: ", open-plan ground floor", False: ", walled rooms", None: ""}[open_plan]
+    what = "earlier generator (--style classic)" if style == "classic" else "generated house"
+    return DatasetSpec(
+        f"{prefix}house-{seed}-{noise}",
+        f"{what}, seed {seed}, 2 floors{plan}, {noise}",
+        "house",
+        seed,
+        noise,
+        style,
+        open_plan,
+    )
+
+
+# The current generator on seeds never used while tuning it (one of them forced open-plan),
+# the real MP3D house, then the earlier generator's houses for comparison with past figures.
 DATASETS = (
-    DatasetSpec("house-201-clean", "generated house, seed 201, 2 floors, clean", "house", 201),
-    DatasetSpec(
-        "house-201-noisy", "generated house, seed 201, 2 floors, noisy", "house", 201, "noisy"
-    ),
-    DatasetSpec("house-202-clean", "generated house, seed 202, 2 floors, clean", "house", 202),
-    DatasetSpec(
-        "house-202-noisy", "generated house, seed 202, 2 floors, noisy", "house", 202, "noisy"
-    ),
+    _house(811, "clean"),
+    _house(811, "noisy"),
+    _house(812, "clean", open_plan=True),
+    _house(812, "noisy", open_plan=True),
     DatasetSpec("mp3d-house", "Matterport3D example house, rendered, clean", "mp3d"),
+    _house(201, "clean", "classic"),
+    _house(201, "noisy", "classic"),
+    _house(202, "clean", "classic"),
+    _house(202, "noisy", "classic"),
 )
 
 
@@ -76,7 +100,7 @@ def make_dataset(spec: DatasetSpec, out: Path) -> bool:
         return True
     from ingest.synthetic.generate import generate_house, write_dataset
 
-    house = generate_house(spec.seed, 2)
+    house = generate_house(spec.seed, 2, style=spec.style, open_plan=spec.open_plan)
     write_dataset(house, out, noise=spec.noise, width=WIDTH, height=HEIGHT, seed=spec.seed)
     return True
 
@@ -158,12 +182,20 @@ def main() -> None:
     ap.add_argument("--no-ablations", action="store_true")
     ap.add_argument("--report-only", action="store_true", help="only re-render the page")
     ap.add_argument("--work", type=Path, help="keep (and reuse) datasets in this folder")
+    ap.add_argument("--only", default="", help="comma-separated dataset names to run")
+    ap.add_argument("--no-request-sets", action="store_true", help="skip parse and MP3D sets")
     args = ap.parse_args()
     if not args.report_only:
         RESULTS.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(prefix="isg-run-all-") as tmp:
             work = args.work or Path(tmp)
+            only = {n.strip() for n in args.only.split(",") if n.strip()}
+            unknown = only - {spec.name for spec in DATASETS}
+            if unknown:
+                sys.exit(f"unknown dataset name(s): {', '.join(sorted(unknown))}")
             for spec in DATASETS:
+                if only and spec.name not in only:
+                    continue
                 t0 = time.perf_counter()
                 dataset = work / spec.name
                 print(f"== {spec.name}: dataset", flush=True)
@@ -173,7 +205,8 @@ def main() -> None:
                 print(f"== {spec.name}: bench", flush=True)
                 out = run_one(spec, dataset, args)
                 print(f"== {spec.name}: {out} ({time.perf_counter() - t0:.0f} s)", flush=True)
-            run_request_sets(work)
+            if not args.no_request_sets:
+                run_request_sets(work)
     docs = load_docs()
     if not docs:
         sys.exit("no results in bench/results/run_all/ to report")
