@@ -56,6 +56,9 @@ class Cursor:
         self._neg = False
         self._stress: str | None = None
         self.with_depth = 0
+        # parsing the object of "in" / "inside" / "from": a word that names both a thing
+        # and a room type ("the WC", "the closet") is the room
+        self.place_object = False
         self.group: Any = None  # a pending group phrase ("in the row of lockers")
 
     def peek(self, k: int = 0) -> Tok | None:

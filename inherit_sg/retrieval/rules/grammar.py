@@ -46,6 +46,8 @@ from inherit_sg.vocab.lexicon import lexicon
 # Prepositions that put the target in a room or area ("in", "inside", "within", "at");
 # "on" only in "on this side" (vague places) and for floors.
 _PLACE_PREDICATES = ("inside", "near", "on")
+# Prepositions whose object, when it names a room type, is that room ("in the WC").
+_PLACE_WORDS = frozenset({"in", "inside", "within", "from"})
 # Words a viewpoint clause may open with before its cue: "if you are facing …".
 VIEW_OPENERS = frozenset({"if", "when", "as", "while", "once", "whilst"})
 # Participles whose particle is the state itself: "turned on" = on.
@@ -227,7 +229,7 @@ class Grammar(Cursor):
             deictic = len(np.words) == 1 and last.text in lexicon().generic_areas
             np.kind = GENERIC_AREA if deictic else AREA
             np.labels = [] if deictic else [np.noun]
-        elif last.has("room") and not (last.has("noun") and len(run) == 1):
+        elif last.has("room") and (self.place_object or not (last.has("noun") and len(run) == 1)):
             np.kind, np.room_type = ROOM, last.tags["room"]
             np.labels = [last.tags["room"]]
         elif last.has("vague"):
@@ -614,7 +616,11 @@ class Grammar(Cursor):
         weight = weighted("relation", stress)
         if predicate == "between":
             return self._between(neg, weight, tok.text)
-        lm = self.parse_np(landmark=True)
+        self.place_object = predicate in ("inside", "on") and tok.text in _PLACE_WORDS
+        try:
+            lm = self.parse_np(landmark=True)
+        finally:
+            self.place_object = False
         if lm is None:
             return None
         text = f"{tok.text} {lm.noun or lm.kind}"
