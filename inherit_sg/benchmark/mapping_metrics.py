@@ -12,7 +12,12 @@ from typing import Any
 from ingest.synthetic.ground_truth_files import seen_objects
 from ingest.synthetic.scene import Scene
 from inherit_sg.config import Config
-from inherit_sg.eval.mapping import evaluate_objects, room_correspondence
+from inherit_sg.eval.mapping import (
+    RoomMatching,
+    evaluate_objects,
+    match_rooms,
+    room_correspondence,
+)
 from inherit_sg.model import EdgeKind, FloorNode, RoomNode, Session
 from inherit_sg.store import MapStore
 
@@ -89,18 +94,21 @@ def quality(store: MapStore, dataset: Path, scene: Scene) -> dict[str, Any]:
         floor_level=lambda o: levels.get(o.floor_id or ""),
         relations=graph.edges(EdgeKind.RELATION),
     )
-    return {"objects": objects.to_dict(), "rooms": room_scores(room_map, len(rooms), scene)}
+    matching = match_rooms(rooms, scene, levels)
+    return {"objects": objects.to_dict(), "rooms": room_scores(matching)}
 
 
-def room_scores(room_map: dict[str, str], predicted: int, scene: Scene) -> dict[str, Any]:
-    """Room precision (predicted rooms that are the best match of a distinct true room)
-    and recall (true rooms that some predicted room matches)."""
-    matched_true = set(room_map.values())
-    true_rooms = len(scene.rooms)
+def room_scores(matching: RoomMatching) -> dict[str, Any]:
+    """Room precision and recall by the one-to-one mutual-majority rule of
+    :class:`~inherit_sg.eval.mapping.RoomMatching`: a map room that merges several true
+    rooms (an open-plan kitchen and living room found as one) or covers only part of a
+    split one matches nothing."""
     return {
-        "predicted": predicted,
-        "true_rooms": true_rooms,
-        "matched": len(matched_true),
-        "precision": len(matched_true) / predicted if predicted else 0.0,
-        "recall": len(matched_true) / true_rooms if true_rooms else 0.0,
+        "predicted": matching.predicted,
+        "true_rooms": matching.true_rooms,
+        "matched": matching.matched,
+        "precision": matching.precision,
+        "recall": matching.recall,
+        "recall_seen": matching.recall_seen,
+        "rule": "mutual majority, one-to-one",
     }

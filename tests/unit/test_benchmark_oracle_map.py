@@ -20,6 +20,7 @@ from inherit_sg.benchmark.storage import storage_breakdown
 from inherit_sg.config import Config
 from inherit_sg.embed import get_text_embedder
 from inherit_sg.errors import ConfigError
+from inherit_sg.eval.mapping import RoomMatching
 from inherit_sg.exchange.scene_truth import scene_to_graph
 from inherit_sg.mapping.node_text import embed_nodes
 from inherit_sg.model import Keyframe, Pose, Session
@@ -83,12 +84,22 @@ def test_sessions_give_build_speed_and_oracle_quality_is_perfect(
     assert q["rooms"]["recall"] == 1.0 and q["rooms"]["precision"] == 1.0
 
 
-def test_room_scores_count_distinct_true_rooms() -> None:
+def test_room_scores_report_the_one_to_one_matching() -> None:
     scene = small_scene()
     ids = [r.id for r in scene.rooms]
-    scores = room_scores({"room:a": ids[0], "room:b": ids[0], "room:c": ids[1]}, 4, scene)
-    assert scores["matched"] == 2
+    matching = RoomMatching(
+        precision=0.5,
+        recall=2 / len(ids),
+        recall_seen=1.0,
+        predicted=4,
+        true_rooms=len(ids),
+        matched=2,
+        pairs={"room:a": ids[0], "room:c": ids[1]},
+    )
+    scores = room_scores(matching)
+    assert scores["matched"] == 2 and scores["predicted"] == 4
     assert scores["precision"] == 0.5 and scores["recall"] == 2 / len(ids)
+    assert scores["recall_seen"] == 1.0
 
 
 def test_ours_beats_flat_on_the_oracle_map_and_ablations_are_recorded(
