@@ -172,6 +172,12 @@ class GeometryConfig(_Section):
         0.25, gt=0.0, description="boundary jitter straightened by line regularisation (m)"
     )
     refine_min_segment: float = Field(0.3, gt=0.0, description="shortest straight wall run (m)")
+    split_open_plan: bool = Field(
+        True, description="split large rooms whose object groups say different room types"
+    )
+    open_plan_min_area: float = Field(
+        25.0, gt=0.0, description="smallest room the open-plan split considers (m²)"
+    )
     viewpoint_rays: int = Field(90, ge=4, description="rays per keyframe for best views")
     bev_scale: int = Field(3, ge=1, le=16, description="pixels per cell in the BEV picture")
 

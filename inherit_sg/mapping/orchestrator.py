@@ -38,6 +38,7 @@ from inherit_sg.mapping.decisions import DecisionRunner
 from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
 from inherit_sg.mapping.missing import MissingTracker
 from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.open_plan import SplitParams, whole_room_id
 from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier
 from inherit_sg.mapping.semantic import LabelSimilarity, SemanticStream
 from inherit_sg.mapping.supervisor import Supervisor
@@ -136,6 +137,9 @@ class Mapper:
             area_labeller=create_area_labeller(config),
             relation_verifier=verifier,
             keyframe_view=None if isinstance(verifier, GeometricVerifier) else self._keyframe_view,
+            open_plan=SplitParams(min_room_m2=config.geometry.open_plan_min_area)
+            if config.geometry.split_open_plan
+            else None,
         )
         self.builder.remember_embedded(self.graph)
         self.supervisor = supervisor or create_supervisor(config, self._bev_png)
@@ -291,10 +295,11 @@ class Mapper:
             self._seen_index = None
             alias = {drop: keep for keep, drop in merged}
             self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
-            for room in self.graph.nodes():
-                if room.id.startswith("room:"):
-                    inside = [o.id for o in self.objects_in(room.id)]
-                    self.supervisor.summarised(room.id, inside)
+            rooms = {n.id for n in self.graph.nodes() if n.id.startswith("room:")}
+            # a split room is entered under its geometric id: summarised as a whole too
+            for room_id in sorted(rooms | {whole_room_id(r) for r in rooms}):
+                inside = [o.id for o in self.objects_in(room_id)]
+                self.supervisor.summarised(room_id, inside)
             t1 = time.perf_counter()
             self._timings["update"] += t1 - t0
             self._persist(alias)
@@ -399,9 +404,14 @@ class Mapper:
         return kf.jpeg, boxes  # type: ignore[return-value]
 
     def objects_in(self, room_id: str) -> list[ObjectNode]:
-        """Current object nodes of one room."""
+        """Current object nodes of one room (of all its parts when it was split)."""
         with self._lock:
-            return [o for o in self.objects.nodes() if o.room_id == room_id]
+            return [
+                o
+                for o in self.objects.nodes()
+                if o.room_id is not None
+                and (o.room_id == room_id or whole_room_id(o.room_id) == room_id)
+            ]
 
     def _raise_worker_error(self) -> None:
         if self._error is not None:

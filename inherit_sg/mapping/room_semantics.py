@@ -134,6 +134,20 @@ def room_type_scores(
     return scores
 
 
+def type_evidence(labels: Sequence[str]) -> dict[str, float]:
+    """What the object kinds among ``labels`` say about every room type (file order):
+    the summed evidence weights of ``rooms.toml``, one vote per kind, fixtures left out;
+    no prior, size or shape term. Used to tell apart the functional parts of a room."""
+    fixtures = room_vocab.fixtures()
+    raw = {" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()}
+    chains = [_kind_chain(lab) for lab in sorted(raw) if lab not in fixtures]
+    by_kind = {c[0]: c for c in chains if c[0] not in fixtures}
+    return {
+        name: _evidence(list(by_kind.values()), rtype.evidence)
+        for name, rtype in room_vocab.room_type_table().items()
+    }
+
+
 def infer_room_types(
     labels: Sequence[str], area_m2: float | None = None, shape: RoomShape | None = None
 ) -> RoomTypes:

@@ -17,6 +17,7 @@ from inherit_sg.mapping.area_labeller import AreaLabeller, RuleAreaLabeller
 from inherit_sg.mapping.areas import cluster_objects
 from inherit_sg.mapping.node_text import node_text
 from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.open_plan import DEFAULT_SPLIT, SplitParams, split_open_plan_rooms
 from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier, RelationVerifier
 from inherit_sg.mapping.relations import Relation, infer_relations
 from inherit_sg.mapping.room_semantics import (
@@ -92,8 +93,12 @@ class HierarchyBuilder:
         area_labeller: AreaLabeller | None = None,
         relation_verifier: RelationVerifier | None = None,
         keyframe_view: KeyframeView | None = None,
+        open_plan: SplitParams | None = DEFAULT_SPLIT,
     ) -> None:
+        """``open_plan``: thresholds of the open-plan room split (None: rooms stay as
+        the geometry made them)."""
         self.embedder = embedder
+        self.open_plan = open_plan
         self.refresh_descriptions = refresh_descriptions
         self.area_labeller = area_labeller or RuleAreaLabeller()
         self.relation_verifier = relation_verifier or GeometricVerifier()
@@ -153,6 +158,8 @@ class HierarchyBuilder:
             else:
                 node.area_id = None
             stats.objects += 1
+        if self.open_plan is not None:
+            by_room = defaultdict(list, split_open_plan_rooms(graph, by_room, self.open_plan))
         rooms = {r.id: r for r in graph.nodes(Layer.ROOM) if isinstance(r, RoomNode)}
         areas_wanted: dict[str, AreaNode] = {}
         has_area: list[Edge] = []
