@@ -164,6 +164,52 @@ def infer_room_types(
     return [(names[i], float(probs[i])) for i in order]
 
 
+# How much a room keeps of its claim to a one-per-storey type (kitchen, living room) that
+# another room of its floor holds more strongly.
+SINGLE_DISCOUNT = 0.2
+
+
+def _discounted(types: Sequence[tuple[str, float]], name: str) -> RoomTypes:
+    """``types`` with ``name``'s probability scaled by :data:`SINGLE_DISCOUNT`,
+    renormalised and re-ranked (ties keep their order)."""
+    scaled = [(t, p * SINGLE_DISCOUNT if t == name else p) for t, p in types]
+    total = sum(p for _, p in scaled) or 1.0
+    ranked = sorted(enumerate(scaled), key=lambda ip: (-ip[1][1], ip[0]))
+    return [(t, p / total) for _, (t, p) in ranked]
+
+
+def separate_single_types(floors: Sequence[dict[str, RoomTypes]]) -> dict[str, RoomTypes]:
+    """The rooms' type distributions after the one-per-storey prior: on each floor (one
+    dict room id → distribution per floor), when several rooms come out best as a type
+    marked ``single`` in rooms.toml (a second "living room" beside the first is more
+    likely the family or TV room), the room with the strongest claim keeps it and the
+    others have it discounted, so that they take their next type. Rooms unaffected keep
+    their distribution unchanged."""
+    single = {name for name, rtype in room_vocab.room_type_table().items() if rtype.single}
+    out: dict[str, RoomTypes] = {}
+    for rooms in floors:
+        current = {rid: list(types) for rid, types in rooms.items()}
+        held: dict[str, str] = {}  # single type -> the room that keeps it
+        for _ in range(len(single) + 1):
+            claims: dict[str, list[tuple[float, str]]] = {}
+            for rid, types in current.items():
+                if types and types[0][0] in single:
+                    claims.setdefault(types[0][0], []).append((types[0][1], rid))
+            contested = {t: c for t, c in claims.items() if len(c) > 1 or t in held}
+            changed = False
+            for name, claimants in sorted(contested.items()):
+                keeper = held.get(name) or max(claimants, key=lambda c: (c[0], c[1]))[1]
+                held[name] = keeper
+                for _p, rid in claimants:
+                    if rid != keeper:
+                        current[rid] = _discounted(current[rid], name)
+                        changed = True
+            if not changed:
+                break
+        out.update(current)
+    return out
+
+
 def room_label(types: Sequence[tuple[str, float]]) -> str:
     """The label of a room with type distribution ``types``: its best type, plainly
     "room" when that is "other room" or unknown."""

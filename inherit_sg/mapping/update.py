@@ -25,6 +25,7 @@ from inherit_sg.mapping.room_semantics import (
     kept_types,
     room_label,
     room_shape,
+    separate_single_types,
     summarise_room,
 )
 from inherit_sg.mapping.semantic import LabelEmbedder
@@ -106,12 +107,19 @@ class HierarchyBuilder:
         self._embedded_text: dict[str, str] = {}
 
     @staticmethod
-    def _label_room(room: RoomNode, labels: list[str]) -> None:
-        """Infer the room's type distribution from its objects' labels and its mask's
-        size and shape; the label is the best type."""
-        types = infer_room_types(labels, shape=room_shape(room.mask))
-        room.types = kept_types(types)
-        room.label = room_label(types)
+    def _label_rooms(rooms: dict[str, RoomNode], by_room: dict[str, list[ObjectNode]]) -> None:
+        """Infer every room's type distribution from its objects' labels and its mask's
+        size and shape, apply the one-per-storey prior floor by floor
+        (:func:`separate_single_types`); each label is its room's best type."""
+        floors: dict[str | None, dict[str, list[tuple[str, float]]]] = {}
+        for room_id, room in rooms.items():
+            labels = [o.label for o in by_room.get(room_id, [])]
+            types = infer_room_types(labels, shape=room_shape(room.mask))
+            floors.setdefault(room.floor_id, {})[room_id] = types
+        separated = separate_single_types(list(floors.values()))
+        for room_id, room in rooms.items():
+            room.types = kept_types(separated[room_id])
+            room.label = room_label(separated[room_id])
 
     def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
         """Closest room of the object's floor by room centre (objects on thresholds,
@@ -164,13 +172,13 @@ class HierarchyBuilder:
         areas_wanted: dict[str, AreaNode] = {}
         has_area: list[Edge] = []
         has_object: list[Edge] = []
+        self._label_rooms(rooms, by_room)
         for room_id, members in sorted(by_room.items()):
             if room_id not in rooms:
                 continue
             room = rooms[room_id]
             room_num = room_id.partition(":")[2]
             summaries = []
-            self._label_room(room, [o.label for o in members])
             for k, cluster in enumerate(cluster_objects(members)):
                 label, summary = self.area_labeller.label([o.label for o in cluster], room.label)
                 pts = np.array([o.position for o in cluster], dtype=float)
@@ -197,7 +205,6 @@ class HierarchyBuilder:
                 floor = (
                     graph.get(room.floor_id) if room.floor_id and room.floor_id in graph else None
                 )
-                self._label_room(room, [])
                 room.summary = summarise_room(room.label, getattr(floor, "level", None), [], [])
                 graph.touch(room_id)
         stats.rooms = len(rooms)

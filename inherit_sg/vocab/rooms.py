@@ -21,7 +21,9 @@ from inherit_sg.vocab import VocabularyError, load_table, string_list
 _FILE = "rooms.toml"
 # Trailing room numbers: "bedroom 2", "bedroom #2", "office 2b".
 _NUMBER = re.compile(r"#?\d+[a-z]?")
-_FIELDS = frozenset({"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence"})
+_FIELDS = frozenset(
+    {"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence", "single"}
+)
 
 
 @dataclass(frozen=True)
@@ -32,7 +34,8 @@ class RoomType:
     ``prior`` is the type's relative frequency in (0, 1]; ``base`` its score before any
     evidence; ``area`` its typical floor area range in m² (None: no size cue);
     ``narrow`` and ``bare`` the scores added when a room is long and narrow or holds
-    only fixtures; ``related`` the types people name it by, with a similarity.
+    only fixtures; ``related`` the types people name it by, with a similarity;
+    ``single`` whether a storey seldom has two rooms of the type.
     """
 
     name: str
@@ -44,6 +47,7 @@ class RoomType:
     narrow: float = 0.0
     bare: float = 0.0
     related: dict[str, float] = field(default_factory=dict)
+    single: bool = False
 
 
 def _number(entry: dict[str, Any], key: str, where: str, default: float) -> float:
@@ -101,6 +105,13 @@ def _related(entry: dict[str, Any], where: str) -> dict[str, float]:
     return out
 
 
+def _flag(entry: dict[str, Any], key: str, where: str) -> bool:
+    value = entry.get(key, False)
+    if not isinstance(value, bool):
+        raise VocabularyError(f"{where}: {key!r} must be true or false")
+    return value
+
+
 def _room_type(name: str, entry: Any) -> RoomType:
     where = f"{_FILE} [types.{name}]"
     if not isinstance(entry, dict):
@@ -121,6 +132,7 @@ def _room_type(name: str, entry: Any) -> RoomType:
         narrow=_number(entry, "narrow", where, 0.0),
         bare=_number(entry, "bare", where, 0.0),
         related=_related(entry, where),
+        single=_flag(entry, "single", where),
     )
 
 

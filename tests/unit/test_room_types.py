@@ -129,3 +129,37 @@ def test_label_and_what_a_room_keeps() -> None:
     assert 2 <= len(kept) <= KEEP_TYPES and kept[0] == (dist[0][0], round(dist[0][1], 4))
     assert all(p >= 0.02 for _, p in kept[1:])
     assert kept_types([("bedroom", 0.99), ("other room", 0.005)]) == (("bedroom", 0.99),)
+
+
+def test_one_per_storey_types_go_to_the_strongest_claim() -> None:
+    from inherit_sg.mapping.room_semantics import separate_single_types
+
+    strong = [("living room", 0.69), ("family room", 0.26), ("tv room", 0.05)]
+    weak = [("living room", 0.56), ("family room", 0.19), ("other room", 0.25)]
+    bedroom = [("bedroom", 0.9), ("other room", 0.1)]
+    other_floor = [("living room", 0.5), ("family room", 0.5)]
+    out = separate_single_types(
+        [
+            {"room:a": strong, "room:b": weak, "room:c": bedroom, "room:d": list(bedroom)},
+            {"room:e": other_floor},
+        ]
+    )
+    assert out["room:a"] == strong  # the strongest claim keeps its type untouched
+    assert out["room:b"][0][0] == "other room" or out["room:b"][0][0] == "family room"
+    assert out["room:b"][0][0] != "living room"
+    assert abs(sum(p for _, p in out["room:b"]) - 1.0) < 1e-9
+    assert out["room:c"] == bedroom and out["room:d"] == bedroom  # two bedrooms are common
+    assert out["room:e"] == other_floor  # another storey has its own living room
+
+
+def test_a_discounted_room_moves_on_to_its_next_free_type() -> None:
+    from inherit_sg.mapping.room_semantics import separate_single_types
+
+    first = [("kitchen", 0.8), ("dining room", 0.2)]
+    second = [("kitchen", 0.5), ("dining room", 0.4), ("other room", 0.1)]
+    third = [("kitchen", 0.45), ("dining room", 0.35), ("bar", 0.2)]
+    out = separate_single_types([{"k1": first, "k2": second, "k3": third}])
+    labels = {rid: types[0][0] for rid, types in out.items()}
+    assert labels["k1"] == "kitchen"
+    assert labels["k2"] == "dining room"  # the stronger of the two dining claims
+    assert labels["k3"] == "bar"  # kitchen and dining room are both held
