@@ -149,7 +149,11 @@ def render(docs: list[dict[str, Any]]) -> Path:
         "`bench/results/run_all/*.json`, each written by `inherit-sg bench --dataset DIR "
         "--out FILE`. CPU only, offline describer and verifier, rule parser; images "
         f"{WIDTH}×{HEIGHT}. Requests are a category-balanced cut of each dataset's "
-        "`queries.jsonl` (`--max-queries`)."
+        "`queries.jsonl` (`--max-queries`). Generated `house-811-*` / `house-812-*` rows come "
+        "from the current generator (Matterport3D room types and object categories, "
+        "open-plan floors, continuous colours) on seeds never used while tuning; "
+        "`classic-house-*` rows are the earlier generator's figures (`--style classic`), "
+        "kept for comparison with past results."
     )
     rel = {k: str(v.relative_to(DOCS)) for k, v in images.items()}
     sets = {
