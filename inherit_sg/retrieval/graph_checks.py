@@ -16,7 +16,9 @@ a bookshelf's shelf lies inside the shelf's box, so ``on`` accepts ``inside`` to
 ``right_of``, ``in_front_of`` and ``behind`` when no viewer can be formed (with one, the
 scorer decides them geometrically: :mod:`inherit_sg.retrieval.directions`). ``between``
 is geometric: the candidate's centre lies inside the segment joining one landmark of
-each kind, close to it.
+each kind, close to it. A candidate that holds the relation with no landmark gets a
+small credit for standing close to one (:meth:`GraphChecker.proximity_all`), so that
+ties among unrelated candidates break by distance rather than by id.
 """
 
 from __future__ import annotations
@@ -50,6 +52,12 @@ _EDGE_RULES: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     "with": (frozenset({"next to"}), frozenset({"on", "inside", "next to"})),
 }
 
+# A candidate for which a relation holds with no landmark still gets this much of the
+# landmark's quality when it stands close to one, decaying with the gap between their
+# footprints (PROXIMITY_SCALE metres): among lamps none of which the map relates to the
+# nightstand, the one beside it ranks first. Far below a relation that holds.
+PROXIMITY_MAX = 0.3
+PROXIMITY_SCALE = 1.0
 # Landmark candidates with their quality in [0, 1], best first.
 Landmarks = Sequence[tuple[str, float]]
 
@@ -184,6 +192,40 @@ class GraphChecker:
                 if ok:
                     out[node] = (quality * factor, why + note)
         return out
+
+    def proximity_all(
+        self, nodes: Sequence[str], landmarks: Landmarks
+    ) -> dict[str, tuple[float, str]]:
+        """Partial credit for object ``nodes`` near object landmarks:
+        ``PROXIMITY_MAX * quality * exp(-gap / PROXIMITY_SCALE)`` for the best landmark,
+        gap being the horizontal distance between the footprints."""
+        snap = self.snap
+        objs = [n for n in nodes if n in snap.obj_index]
+        marks = [(lid, q) for lid, q in landmarks if lid in snap.obj_index and q > 0.0]
+        if not objs or not marks:
+            return {}
+        rows = np.array([snap.obj_index[n] for n in objs], dtype=int)
+        lo, hi = snap.lo[rows], snap.hi[rows]
+        best = np.zeros(len(objs))
+        which = [""] * len(objs)
+        gaps = np.full(len(objs), np.inf)
+        for lid, quality in marks:
+            j = snap.obj_index[lid]
+            dx = np.maximum(0.0, np.maximum(lo[:, 0] - snap.hi[j, 0], snap.lo[j, 0] - hi[:, 0]))
+            dy = np.maximum(0.0, np.maximum(lo[:, 1] - snap.hi[j, 1], snap.lo[j, 1] - hi[:, 1]))
+            gap = np.hypot(dx, dy)
+            credit = PROXIMITY_MAX * quality * np.exp(-gap / PROXIMITY_SCALE)
+            credit[rows == j] = 0.0  # never its own landmark
+            better = credit > best
+            best = np.where(better, credit, best)
+            gaps = np.where(better, gap, gaps)
+            for i in np.flatnonzero(better):
+                which[i] = lid
+        return {
+            n: (float(best[i]), f"no relation found; {gaps[i]:.1f} m from {which[i]}")
+            for i, n in enumerate(objs)
+            if best[i] > 0.0
+        }
 
     def _xy(self, node: str) -> tuple[float, float]:
         i = self.snap.obj_index.get(node)

@@ -350,7 +350,9 @@ class Scorer:
             if view is not None:
                 found[con.id] = directional_all(self.snap, view, ids, con.predicate, first)
             else:
-                found[con.id] = self.checker.relation_all(ids, con.predicate, first)
+                held = self.checker.relation_all(ids, con.predicate, first)
+                near = self.checker.proximity_all([i for i in ids if i not in held], first)
+                found[con.id] = {**near, **held}
         return found
 
     def _heights(self, spec: NodeSpec, out: list[Scored]) -> None:

@@ -130,3 +130,23 @@ def test_batched_checks_agree_with_pairwise_ones(predicate: str) -> None:
         for n in nodes
         if checker.between(n, [("obj:s1", 1.0)], [("obj:a1", 0.5), ("obj:l1", 0.9)])[0]
     }
+
+
+def test_proximity_credit_ranks_the_nearer_object_when_no_relation_holds() -> None:
+    from inherit_sg.retrieval.graph_checks import PROXIMITY_MAX
+
+    snap = small_snapshot()
+    checker = GraphChecker(snap)
+    mugs = ["obj:m1", "obj:m2", "obj:m3"]
+    credit = checker.proximity_all(mugs, [("obj:t1", 1.0)])
+    assert set(credit) <= set(mugs) and credit
+    assert all(0.0 < sim <= PROXIMITY_MAX for sim, _ in credit.values())
+    # the mug on the kitchen table touches it: full proximity credit, the others less
+    assert credit["obj:m1"][0] == pytest.approx(PROXIMITY_MAX)
+    assert all(credit[m][0] <= credit["obj:m1"][0] for m in credit)
+    assert "from obj:t1" in credit["obj:m1"][1]
+    # a landmark of lower quality gives proportionally less; no object landmark, nothing
+    half = checker.proximity_all(["obj:m1"], [("obj:t1", 0.5)])
+    assert half["obj:m1"][0] == pytest.approx(PROXIMITY_MAX * 0.5)
+    assert checker.proximity_all(mugs, [("room:kitchen", 1.0)]) == {}
+    assert "obj:t1" not in checker.proximity_all(["obj:t1"], [("obj:t1", 1.0)])
