@@ -93,6 +93,12 @@ class RetrievalConfig(_Section):
     parser: str = Field("rules", pattern="^(rules|llm)$")
     verify: bool = True
     verify_depth: int = Field(3, ge=1)
+    verify_max_gap: float = Field(
+        1.0,
+        ge=0.0,
+        description="candidates scoring more than this below the best are no alternative "
+        "that verification may pick over it (1.0 = one whole label term)",
+    )
     top_k: int = Field(10, ge=1)
     use_areas: bool = Field(
         True, description="use functional-area nodes (L2) in candidates and scoring (ablation)"

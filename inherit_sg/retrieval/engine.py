@@ -66,6 +66,15 @@ def _answerable(spec: NodeSpec, ranked: list[Scored]) -> bool:
     return ranked[0].score >= 0.0
 
 
+def verification_candidates(ranked: list[Scored], depth: int, max_gap: float) -> list[Scored]:
+    """The candidates visual verification may try, best first: the top ``depth`` that
+    score at most ``max_gap`` below the best (the best always)."""
+    if not ranked:
+        return []
+    floor = ranked[0].score - max_gap
+    return [c for c in ranked[:depth] if c.score >= floor]
+
+
 class QueryEngine:
     """Answers natural-language requests on one map."""
 
@@ -303,8 +312,11 @@ class QueryEngine:
     ) -> tuple[Scored | None, bool | None]:
         """The answer: the first of the top ``verify_depth`` candidates that passes
         visual verification (the top one, unverified, when verification is off or none
-        passes). With ``retrieval.verify_segmenter`` off the target label is not
-        grounded first: the verifier alone judges the recorded detection's crop."""
+        passes). Only candidates within ``retrieval.verify_max_gap`` of the best score are
+        tried: a crop that looks off never hands the answer to a candidate that does not
+        match the request (a desk for "the white computer"). With
+        ``retrieval.verify_segmenter`` off the target label is not grounded first: the
+        verifier alone judges the recorded detection's crop."""
         if not ranked:
             return None, None
         if not verify:
@@ -312,7 +324,8 @@ class QueryEngine:
         depth = self.config.retrieval.verify_depth
         use_segmenter = self.config.retrieval.verify_segmenter
         segmenter = self._get_segmenter(trace) if use_segmenter else None
-        for cand in ranked[:depth]:
+        tried = verification_candidates(ranked, depth, self.config.retrieval.verify_max_gap)
+        for cand in tried:
             node = snap.objects.get(cand.id)
             if node is None:
                 trace.append(f"verify {cand.id}: not an object, nothing to check visually")
@@ -338,7 +351,7 @@ class QueryEngine:
             trace.append(f"verify {cand.id}: confirmed ({why}; {verdict.reason})")
             return cand, verdict.ok
         trace.append(
-            f"verify: none of the top {min(depth, len(ranked))} passed; answering the "
+            f"verify: none of the top {len(tried)} passed; answering the "
             "best-ranked candidate unverified"
         )
         return ranked[0], False

@@ -152,3 +152,23 @@ def test_skipping_the_segmenter_step_keeps_the_recorded_box() -> None:
     assert OfflineVerifier().verify(ev, box).ok is True
     ev.keyframe = None
     assert skip_grounding(ev)[0] is None
+
+
+def test_verification_never_tries_candidates_far_below_the_best() -> None:
+    from inherit_sg.retrieval.engine import verification_candidates
+
+    def scored(node_id: str, label_sim: float, colour_sim: float) -> Scored:
+        cand = Scored(node_id)
+        cand.terms["c1"] = Term("c1", "label", 1.0, 1, label_sim, "")
+        cand.terms["c2"] = Term("c2", "attribute", 0.6, 1, colour_sim, "")
+        return cand
+
+    computer = scored("obj:pc", 1.0, 1.0)  # the white computer asked for
+    grey_pc = scored("obj:pc2", 1.0, 0.0)  # another computer, colour off
+    desk = scored("obj:desk", 0.13, 0.0)  # a related label only
+    ranked = [computer, grey_pc, desk]
+    assert verification_candidates(ranked, 3, 1.0) == [computer, grey_pc]
+    assert verification_candidates(ranked, 3, 5.0) == ranked
+    assert verification_candidates(ranked, 1, 5.0) == [computer]
+    assert verification_candidates(ranked, 3, 0.0) == [computer]
+    assert verification_candidates([], 3, 1.0) == []
