@@ -225,6 +225,6 @@ def lexicon() -> Lexicon:
         refine_openers=tuple(tuple(p.split()) for p in _list(frames, "refine_openers", where)),
         problems={
             k: frozenset(_list(problems, k, where))
-            for k in ("subjects", "request_words", "speaker")
+            for k in ("subjects", "request_words", "speaker", "place_words")
         },
     )

@@ -16,7 +16,7 @@ from itertools import pairwise
 
 from inherit_sg.retrieval.constraints import FunctionConstraint
 from inherit_sg.retrieval.rules.cursor import weighted
-from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.functions import problems
 from inherit_sg.vocab.lexicon import lexicon
 
@@ -94,4 +94,19 @@ def split_problem(
         text=" ".join(w.text for w in first),
     )
     rest = words[cut + 1 :]
+    place = _place_part(first)
+    if place:  # "it is stuffy in the bedroom": the place stays a constraint
+        rest = [*place, COMMA, *rest] if rest else place
     return made, ([rest] if rest else []) + sentences[1:]
+
+
+def _place_part(words: list[Word]) -> list[Word]:
+    """The words of a statement from its first place word on ("in the bedroom",
+    "upstairs"), or none."""
+    places = lexicon().problems["place_words"]
+    for i, w in enumerate(words):
+        if w.text in places and (w.pos in ("ADP", "ADV") or w.text.endswith("stairs")):
+            tail = words[i:]
+            if len(tail) > 1 or w.text.endswith("stairs"):
+                return tail
+    return []
