@@ -95,7 +95,8 @@ def render_page(
     if "parse" in sets:
         parts += [
             "## Request parsing",
-            "The offline parser (spaCy + vocabularies) on the development set: 690 requests "
+            "The offline parser (spaCy + vocabularies) on the development set: "
+            f"{sets['parse'].get('accuracy', {}).get('requests', '?')} requests "
             "written the way people talk, annotated with their target and constraints "
             "(`docs/dev_requests.md`); from `bench/results/parse.json` "
             "(`python bench/parse.py --dev`). Latency without the result cache.",

@@ -129,6 +129,7 @@ class ClauseParser(Grammar):
             if tok.has("seek") and not verbs.is_verb_here(self):
                 self._request_verb()
             elif verbs.is_verb_here(self):
+                verb_at = self.i
                 made, candidate = verbs.parse_vp(self)
                 out.functions += [c for c in made if c.kind == "function"]
                 self._route(out, [c for c in made if c.kind != "function"])
@@ -140,7 +141,10 @@ class ClauseParser(Grammar):
                     elif out.head is None:
                         out.head = candidate
                         out.head_negated = candidate.excluded
-                    elif not self._replaces_head(out, candidate, False):
+                    elif not (
+                        self._replaces_head(out, candidate, False)
+                        or self._next_errand(out, candidate, False, verb_at)
+                    ):
                         self._second_phrase(out, candidate, False, False)
             elif tok.has("seeker") and self.at("modal", "wh", k=-1):
                 self.advance()  # "where would one go"
@@ -161,6 +165,11 @@ class ClauseParser(Grammar):
                 phrase = self.parse_pp()
                 if phrase is not None:
                     self._route(out, phrase)
+            elif tok.has("placement") and not tok.has("noun"):
+                self.advance()  # "In the corner of the room stands a lamp"
+                holder = NP()
+                self._placement(holder, tok.tags["placement"], tok.text)
+                self._route(out, [*holder.constraints, *holder.places])
             elif tok.has("super") and out.head is not None:
                 self._attach_postmodifiers(out.head)
             elif out.head is not None and tok.has("with", "without", "have"):
@@ -433,7 +442,35 @@ class ClauseParser(Grammar):
             return
         if self._replaces_head(out, np, neg):
             return
+        j = start - 1
+        while j >= 0 and (self.toks[j].tag == "RP" or self.toks[j].text in _PARTICLES):
+            j -= 1  # "grab out the …"
+        if self._next_errand(out, np, neg, j):
+            return
         self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
+
+    def _next_errand(self, out: Clause, np: NP, neg: bool, j: int) -> bool:
+        """ "Go to the sofa and pick up the remote", "… and find the basket": the object
+        of a second command (its verb at token ``j``) after "and" is the target, found
+        near the first one."""
+        head = out.head
+        if neg or head is None or head.kind != OBJECT or np.kind != OBJECT or not np.labels:
+            return False
+        verb = self.toks[j] if j >= 0 else None
+        before = self.toks[j - 1] if j >= 1 else None
+        if verb is None or before is None or not before.has("and"):
+            return False
+        if not (verb.has("seek", "overb", "fverb") or verb.tag == "VB"):
+            return False
+        np.constraints.append(
+            RelationConstraint(
+                predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
+                text=f"near {head.noun}",
+            )
+        )  # fmt: skip
+        self.notes.append(f"{np.noun!r} is the target; {head.noun!r} is where to look")
+        out.head = np
+        return True
 
     def _stray_object(self, out: Clause, np: NP, prev: object) -> bool:
         """An unknown noun that is the object of an unparsed verb ("after finishing my
@@ -495,6 +532,9 @@ class ClauseParser(Grammar):
             head.constraints += np.constraints
             head.plural = True
         elif head.kind == ANAPHOR:
+            head.constraints += np.constraints
+        elif np.kind == ANAPHOR and not np.plural and not neg:
+            # "the shelf is white, it is mounted on the wall": "it" is the head again
             head.constraints += np.constraints
         else:
             self.notes.append(f"ignored second noun phrase {np.noun or np.kind!r}")

@@ -525,8 +525,10 @@ class Grammar(Cursor):
     def _picks_from(np: NP) -> bool:
         """Whether ``np`` picks one of what "of …" names: "the larger of", "the second
         of", "one of", "the leftmost of", "the stack of" (not "full of", "made of")."""
-        if np.kind == OBJECT and np.words and np.words[-1] in lexicon().quantity_nouns:
-            return True
+        if np.kind == OBJECT and np.words:
+            last, quantities = np.words[-1], lexicon().quantity_nouns
+            if last in quantities or (last.endswith("s") and last[:-1] in quantities):
+                return True  # "the pair of shoes", "pairs of shoes"
         if np.kind not in (ONE, GENERIC) or np.labels:
             return False
         ranked = any(isinstance(c, Superlative) for c in np.constraints)
@@ -595,10 +597,10 @@ class Grammar(Cursor):
             snap = self.state()
             self.advance()
             room = self.parse_np(landmark=True)
-            if room is not None and room.kind == ROOM:
+            if room is not None and room.kind == ROOM and (room.room_type or room.labels):
                 np.places.append(self._room(room, False, f"of {room.noun}", None))
-            else:
-                self.restore(snap)
+            elif room is None or room.kind != ROOM:
+                self.restore(snap)  # "of the room" says nothing more: consumed
 
     # ---------------------------------------------------------- prepositions
     def parse_pp(self, predicate: str | None = None) -> list[Constraint] | None:

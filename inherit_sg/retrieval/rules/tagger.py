@@ -179,9 +179,10 @@ def _singulars(word: Word) -> list[str]:
     says "othman")."""
     out = [word.lemma] if word.lemma != word.text else []
     text = word.text
-    for cut in (1, 2):
-        if len(text) > cut + 2:
-            out.append(text[:-cut])
+    if text.endswith("s") and len(text) > 3:
+        out.append(text[:-1])  # "ottomans" → "ottoman"
+        if text.endswith("es") and len(text) > 4:
+            out.append(text[:-2])  # "benches" → "bench"
     return out
 
 
@@ -281,10 +282,10 @@ _PARTICLES = ("on", "off", "up", "down", "out")
 
 
 def _verb_with_particle(words: list[Word], i: int) -> bool:
-    """Whether the sentence-opening word ``i`` is a verb with a particle before its
-    object ("Switch on the lamp", "Turn off the TV"): a particle, then a determiner."""
-    if i + 2 >= len(words) or words[i].pos in ("DET", "PRON", "ADP", "ADV", "ADJ"):
-        return False
+    """Whether the sentence-opening word ``i``, a verb by spaCy, takes a particle before
+    its object ("Switch on the lamp", "Turn off the TV"): a particle, then a determiner."""
+    if i + 2 >= len(words) or words[i].pos != "VERB":
+        return False  # "lamp on the desk" names a lamp: only spaCy's verbs
     particle, after = words[i + 1], words[i + 2]
     return particle.text in _PARTICLES and after.pos == "DET"
 
