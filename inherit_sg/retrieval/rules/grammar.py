@@ -571,6 +571,8 @@ class Grammar(Cursor):
             end += 1
         if self.at("of", k=end) or (self.at("det", k=end) and self.np_start(end)):
             return False  # "to the left of the sofa", "in near the doorway"
+        if self.at("noun", "unk", k=end):
+            return False  # "beneath the left window": the side is the landmark's
         np.direction = self.toks[self.i + k].tags["dir"]
         self.i += end
         return True

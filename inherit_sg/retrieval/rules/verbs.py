@@ -117,6 +117,12 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
+    if named and tok.lemma in _KEEP_VERBS and _asks_where(g, start):
+        assert obj is not None
+        if not has_own_sense(verb, words, lemmas):
+            # "where do we keep the iron?": where the iron is, not a place to store things
+            g.notes.append(f"'where … {tok.text} {obj.noun}': the object is the target")
+            return [], obj
     if (
         (verb in lx.light_verbs or _imperative(g, start))
         and obj is not None
@@ -163,6 +169,15 @@ def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, l
 def lemma_of(tok: Tok) -> str:
     """The token's lemma (a multi-word token is its own lemma)."""
     return tok.lemma if tok.lemma and " " not in tok.text else tok.text
+
+
+# Verbs of habitual keeping: "where do we keep / store the X" asks where X is.
+_KEEP_VERBS = frozenset({"keep", "store"})
+
+
+def _asks_where(g: Grammar, start: int) -> bool:
+    """Whether the clause before token ``start`` asks "where" ("where do we keep …")."""
+    return any(t.text == "where" for t in g.toks[:start])
 
 
 def _imperative(g: Grammar, start: int) -> bool:
