@@ -44,7 +44,7 @@ def _reference(clause: Clause, head: NP | None, refine: bool) -> str:
 def _head(clause: Clause, reference: str) -> NP | None:
     if clause.head is not None:
         return clause.head
-    if clause.functions or clause.pending:
+    if clause.functions or clause.pending or clause.implied:
         return NP(kind=GENERIC)  # "where can I sit?", "what is on the table?"
     if clause.floor_np is not None and reference == "none" and not clause.places[1:]:
         return NP(kind="floor", labels=["floor"], words=clause.floor_np.words)
@@ -97,7 +97,8 @@ def assemble(
             viewpoint=clause.viewpoint,
         )
     own = clause.pending + head.constraints
-    functions = [c for c in clause.functions + own if isinstance(c, FunctionConstraint)]
+    named = clause.functions + own + clause.implied
+    functions = [c for c in named if isinstance(c, FunctionConstraint)]
     functions = list({f.function: f for f in reversed(functions)}.values())[::-1]
     if not functions and not head.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
         functions = list(_guess_function(words, notes))

@@ -64,6 +64,8 @@ class Clause:
     pending: list[Constraint] = field(default_factory=list)
     places: list[Constraint] = field(default_factory=list)
     functions: list[Constraint] = field(default_factory=list)
+    # functions a problem statement implies ("I'm cold"): after any the request names
+    implied: list[Constraint] = field(default_factory=list)
     excluded_labels: list[Constraint] = field(default_factory=list)
     exclude_previous: bool = False
     floor_np: NP | None = None

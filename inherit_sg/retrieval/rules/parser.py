@@ -159,7 +159,7 @@ def parse_uncached(text: str) -> ParsedQuery:
             _merge_sentence(clause, more, notes)
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
-        clause.functions.append(problem)  # an explicit request ("where can I lie down") leads
+        clause.implied.append(problem)  # an explicit request ("where can I lie down") leads
     return assemble(text, clause, refine, notes, [w.text for w in words])
 
 
