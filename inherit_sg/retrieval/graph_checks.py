@@ -58,6 +58,8 @@ _EDGE_RULES: dict[str, tuple[frozenset[str], frozenset[str]]] = {
 # nightstand, the one beside it ranks first. Far below a relation that holds.
 PROXIMITY_MAX = 0.3
 PROXIMITY_SCALE = 1.0
+# How a proximity credit's reason opens (verification tells it from a relation that holds).
+PROXIMITY_NOTE = "no relation found"
 # Landmark candidates with their quality in [0, 1], best first.
 Landmarks = Sequence[tuple[str, float]]
 
@@ -222,7 +224,7 @@ class GraphChecker:
             for i in np.flatnonzero(better):
                 which[i] = lid
         return {
-            n: (float(best[i]), f"no relation found; {gaps[i]:.1f} m from {which[i]}")
+            n: (float(best[i]), f"{PROXIMITY_NOTE}; {gaps[i]:.1f} m from {which[i]}")
             for i, n in enumerate(objs)
             if best[i] > 0.0
         }

@@ -33,6 +33,7 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     LabelConstraint,
 )
+from inherit_sg.retrieval.graph_checks import PROXIMITY_NOTE
 from inherit_sg.retrieval.plan import NodeSpec
 from inherit_sg.retrieval.scoring import Scored
 
@@ -128,16 +129,28 @@ def crop_colour(image: np.ndarray, box: Box) -> str:
     return colour_name(image, mask) if mask.all() else colour_name_in_frame(image, mask)
 
 
+# A candidate whose label / function match is weaker than this is not what was asked for.
+NAMED_MIN = 0.5
+
+
 def graph_failures(ev: Evidence) -> list[str]:
-    """Positive spatial / room / area / floor constraints the graph does not support,
-    and negated ones it does."""
+    """Positive spatial / room / area / floor constraints the graph does not support
+    (a relation credited only for standing near the landmark is not supported), negated
+    ones it does, and a thing that is not what was asked for (its label or function
+    match below :data:`NAMED_MIN`)."""
     out: list[str] = []
     if ev.spec.levels is not None and not ev.scored.h_floor:
         out.append("not on the requested floor")
+    named = [t for t in ev.scored.terms.values() if t.kind in ("label", "function")]
+    positive = [t for t in named if t.polarity > 0]
+    if positive and max(t.sim for t in positive) < NAMED_MIN:
+        best = max(positive, key=lambda t: t.sim)
+        out.append(f"{best.cid} ({best.kind}) barely matches: {best.why}")
     for term in ev.scored.terms.values():
         if term.kind not in ("relation", "room", "area"):
             continue
-        if term.polarity > 0 and term.sim <= 0.0:
+        unsupported = term.sim <= 0.0 or term.why.startswith(PROXIMITY_NOTE)
+        if term.polarity > 0 and unsupported:
             out.append(f"{term.cid} ({term.kind}) not found in the graph")
         elif term.polarity < 0 and term.sim >= 0.5:
             out.append(f"{term.cid} (negated {term.kind}) holds: {term.why}")

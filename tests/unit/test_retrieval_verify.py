@@ -14,9 +14,11 @@ from inherit_sg.llm.client import ChatClient
 from inherit_sg.model import Frame, Keyframe, ObjectNode, Pose
 from inherit_sg.perception.base import Detection, make_detection
 from inherit_sg.retrieval import parse_rules
+from inherit_sg.retrieval.graph_checks import PROXIMITY_NOTE
 from inherit_sg.retrieval.plan import Compiler
 from inherit_sg.retrieval.scoring import Scored, Term
 from inherit_sg.retrieval.verify import (
+    NAMED_MIN,
     Evidence,
     OfflineVerifier,
     central_crop,
@@ -102,6 +104,19 @@ def test_graph_failures_reject_unsupported_constraints() -> None:
     ev.scored.terms["c2"] = Term("c2", "relation", 0.8, -1, 1.0, "c2 -[near]-> t1")
     assert "negated relation" in graph_failures(ev)[0]
     ev.scored.terms["c2"] = Term("c2", "relation", 0.8, 1, 1.0)
+    assert graph_failures(ev) == []
+    # standing near the landmark is credited in ranking, but supports no relation
+    near = f"{PROXIMITY_NOTE}; 0.4 m from obj:t1"
+    ev.scored.terms["c2"] = Term("c2", "relation", 0.8, 1, 0.2, near)
+    assert graph_failures(ev) == ["c2 (relation) not found in the graph"]
+
+
+def test_graph_failures_reject_a_thing_that_is_not_what_was_asked() -> None:
+    ev = evidence("the chair", "obj:c2", None)
+    ev.scored.terms["c1"] = Term("c1", "label", 1.0, 1, 0.12, "found by text search")
+    failures = graph_failures(ev)
+    assert len(failures) == 1 and "barely matches" in failures[0]
+    ev.scored.terms["c1"] = Term("c1", "label", 1.0, 1, NAMED_MIN, "a kind of chair")
     assert graph_failures(ev) == []
 
 
