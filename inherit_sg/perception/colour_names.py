@@ -164,3 +164,30 @@ def colour_name_in_frame(rgb: np.ndarray, mask: np.ndarray) -> str:
     bright surfaces (:func:`exposure_gain`); "unknown" for an empty mask."""
     rep = representative_colour(rgb, mask, gain=exposure_gain(rgb, mask))
     return "unknown" if rep is None else name_rgb(rep)
+
+
+# Two different colour names resemble each other at most this much (a beige sofa asked
+# for as white still ranks above a black one), falling to nothing at NEIGHBOUR_DE apart.
+NEIGHBOUR_MAX = 0.5
+NEIGHBOUR_DE = 40.0
+
+
+def name_distance(a: str, b: str) -> float:
+    """Smallest CIELAB distance between the prototypes of colour names ``a`` and ``b``
+    (inf when either is not a palette name)."""
+    rows_a = [i for i, n in enumerate(_PROTO_NAMES) if n == a]
+    rows_b = [i for i, n in enumerate(_PROTO_NAMES) if n == b]
+    if not rows_a or not rows_b:
+        return float("inf")
+    diff = _PROTO_LAB[rows_a][:, None, :] - _PROTO_LAB[rows_b][None, :, :]
+    return float(np.sqrt((diff**2).sum(axis=-1)).min())
+
+
+def name_similarity(a: str, b: str) -> float:
+    """How well an object whose colour was named ``a`` answers a request for ``b``: 1 for
+    the same name; for neighbouring names (beige and white, grey and silver-white) up to
+    :data:`NEIGHBOUR_MAX`, falling linearly with the prototypes' CIELAB distance."""
+    if a == b:
+        return 1.0
+    d = name_distance(a, b)
+    return NEIGHBOUR_MAX * max(0.0, 1.0 - d / NEIGHBOUR_DE)

@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from inherit_sg.model import ObjectNode, RoomNode
+from inherit_sg.perception.colour_names import name_similarity
 from inherit_sg.perception.describer import size_class
 from inherit_sg.retrieval.candidates import Candidates
 from inherit_sg.retrieval.constraints import (
@@ -172,7 +173,12 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     if isinstance(node, ObjectNode):
         have = node.attributes.get(con.key)
         if isinstance(have, str) and have and have.lower() != "unknown":
-            return (1.0 if have.lower() == value else 0.0), f"{con.key} is {have.lower()}"
+            seen = have.lower()
+            if con.key == "colour" and seen != value:
+                # neighbouring names share part of the credit: colour naming is a guess
+                near = name_similarity(seen, value)
+                return near, f"colour is {seen}" + (f", close to {value}" if near else "")
+            return (1.0 if seen == value else 0.0), f"{con.key} is {seen}"
         if con.key == "size" and (ref := snap.kind_sizes.get(node.label.lower())):
             # size words are relative to the kind: compare with the map's others
             ratio = linear_size(node) / ref

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import pytest
 
+from inherit_sg.perception.colour_names import NEIGHBOUR_MAX, name_similarity
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.candidates import Candidates
 from inherit_sg.retrieval.constraints import AttributeConstraint
@@ -109,6 +110,12 @@ def test_attribute_sim_prefers_measured_attributes(snap: MapSnapshot) -> None:
     red = AttributeConstraint(key="colour", value="red")
     assert attribute_sim(snap, "obj:c3", red)[0] == 1.0
     assert attribute_sim(snap, "obj:c1", red) == (0.0, "colour is blue")
+    # a neighbouring name shares part of the credit: a red chair asked for as orange
+    orange = AttributeConstraint(key="colour", value="orange")
+    sim, why = attribute_sim(snap, "obj:c3", orange)
+    assert 0.0 < sim <= NEIGHBOUR_MAX and why == "colour is red, close to orange"
+    assert sim == name_similarity("red", "orange") < name_similarity("red", "red") == 1.0
+    assert name_similarity("white", "black") == 0.0
     small = AttributeConstraint(key="size", value="small")
     assert attribute_sim(snap, "obj:m2", small)[0] == 1.0
 
