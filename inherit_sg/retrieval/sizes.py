@@ -28,8 +28,9 @@ SMALL_BELOW = 0.93
 LARGE_ABOVE = 1.1
 # How fast a size word's match falls off outside its band (share of linear size).
 SIZE_SOFTNESS = 0.15
-# Fewest objects of a label that make a reference for relative size words.
-MIN_PEERS = 3
+# Fewest objects of a label that make a reference for relative size words (two: "the
+# large TV" of a pair is the bigger one).
+MIN_PEERS = 2
 # Views needed before a box counts as measured for size comparisons.
 MIN_VIEWS = 2
 

@@ -73,8 +73,10 @@ def test_size_words_are_relative_to_the_kind() -> None:
     refs = kind_sizes([*mugs, *tables, sliver])
     assert set(refs) == {"mug", "table"}
     assert refs["mug"] == pytest.approx(0.1)
-    # too few measured objects of a kind: no reference
-    assert kind_sizes(mugs[:2]) == {}
+    # two measured objects of a kind already compare ("the large TV" of two);
+    # a single one has no reference
+    assert kind_sizes(mugs[:2]) == {"mug": pytest.approx(0.09)}
+    assert kind_sizes(mugs[:1]) == {}
     assert not measured_in_views(sliver) and measured_in_views(mugs[0])
 
 
