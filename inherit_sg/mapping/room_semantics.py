@@ -101,6 +101,16 @@ def _evidence(chains: Sequence[tuple[str, ...]], weights: dict[str, float]) -> f
     return total
 
 
+def _set_evidence(chains: Sequence[tuple[str, ...]], sets: dict[str, tuple[int, float]]) -> float:
+    """What the sets of a type say: ``weight`` for every set kind that at least ``count``
+    of the objects (``chains``, one per object, repeats counted) are kinds of."""
+    total = 0.0
+    for kind, (count, weight) in sets.items():
+        if sum(1 for chain in chains if kind in chain) >= count:
+            total += weight
+    return total
+
+
 def _size_penalty(area_m2: float | None, typical: tuple[float, float] | None) -> float:
     if area_m2 is None or typical is None or area_m2 <= 0:
         return 0.0
@@ -114,10 +124,12 @@ def room_type_scores(
 ) -> dict[str, float]:
     """The score of every room type (file order) for a room holding objects labelled
     ``labels``, of floor area ``area_m2`` (else the shape's) and ``shape``."""
-    raw = {" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()}
+    every = [" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()]
+    raw = set(every)
     chains = list(dict.fromkeys(_kind_chain(lab) for lab in sorted(raw)))
     by_kind = {chain[0]: chain for chain in chains}  # one vote per kind ("couch", "sofa")
     fixtures = room_vocab.fixtures()
+    objects = [_kind_chain(lab) for lab in every if lab not in fixtures]
     bare = bool(raw) and all(lab in fixtures or _kind_chain(lab)[0] in fixtures for lab in raw)
     area = area_m2 if area_m2 is not None else (shape.area_m2 if shape is not None else None)
     narrowness = shape.narrowness if shape is not None else 0.0
@@ -127,6 +139,7 @@ def room_type_scores(
             rtype.base
             + PRIOR_WEIGHT * math.log(rtype.prior)
             + _evidence(list(by_kind.values()), rtype.evidence)
+            + _set_evidence(objects, rtype.sets)
             - _size_penalty(area, rtype.area)
             + rtype.narrow * narrowness
             + (rtype.bare if bare else 0.0)
@@ -136,14 +149,16 @@ def room_type_scores(
 
 def type_evidence(labels: Sequence[str]) -> dict[str, float]:
     """What the object kinds among ``labels`` say about every room type (file order):
-    the summed evidence weights of ``rooms.toml``, one vote per kind, fixtures left out;
-    no prior, size or shape term. Used to tell apart the functional parts of a room."""
+    the summed evidence weights of ``rooms.toml``, one vote per kind, and its sets
+    (repeats counted), fixtures left out; no prior, size or shape term. Used to tell
+    apart the functional parts of a room."""
     fixtures = room_vocab.fixtures()
-    raw = {" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()}
-    chains = [_kind_chain(lab) for lab in sorted(raw) if lab not in fixtures]
-    by_kind = {c[0]: c for c in chains if c[0] not in fixtures}
+    every = [" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()]
+    objects = [_kind_chain(lab) for lab in every if lab not in fixtures]
+    objects = [c for c in objects if c[0] not in fixtures]
+    by_kind = {c[0]: c for c in sorted(set(objects))}
     return {
-        name: _evidence(list(by_kind.values()), rtype.evidence)
+        name: _evidence(list(by_kind.values()), rtype.evidence) + _set_evidence(objects, rtype.sets)
         for name, rtype in room_vocab.room_type_table().items()
     }
 

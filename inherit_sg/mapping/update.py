@@ -20,6 +20,7 @@ from inherit_sg.mapping.object_map import ObjectMap
 from inherit_sg.mapping.open_plan import DEFAULT_SPLIT, SplitParams, split_open_plan_rooms
 from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier, RelationVerifier
 from inherit_sg.mapping.relations import Relation, infer_relations
+from inherit_sg.mapping.room_merge import DEFAULT_MERGE, MergeParams, merge_over_segmented_rooms
 from inherit_sg.mapping.room_semantics import (
     infer_room_types,
     kept_types,
@@ -95,11 +96,14 @@ class HierarchyBuilder:
         relation_verifier: RelationVerifier | None = None,
         keyframe_view: KeyframeView | None = None,
         open_plan: SplitParams | None = DEFAULT_SPLIT,
+        merge: MergeParams | None = DEFAULT_MERGE,
     ) -> None:
         """``open_plan``: thresholds of the open-plan room split (None: rooms stay as
-        the geometry made them)."""
+        the geometry made them); ``merge``: thresholds of the join of over-segmented
+        rooms, done before the split (None: no join)."""
         self.embedder = embedder
         self.open_plan = open_plan
+        self.merge = merge
         self.refresh_descriptions = refresh_descriptions
         self.area_labeller = area_labeller or RuleAreaLabeller()
         self.relation_verifier = relation_verifier or GeometricVerifier()
@@ -166,6 +170,8 @@ class HierarchyBuilder:
             else:
                 node.area_id = None
             stats.objects += 1
+        if self.merge is not None:
+            by_room = defaultdict(list, merge_over_segmented_rooms(graph, by_room, self.merge))
         if self.open_plan is not None:
             by_room = defaultdict(list, split_open_plan_rooms(graph, by_room, self.open_plan))
         rooms = {r.id: r for r in graph.nodes(Layer.ROOM) if isinstance(r, RoomNode)}

@@ -22,7 +22,7 @@ _FILE = "rooms.toml"
 # Trailing room numbers: "bedroom 2", "bedroom #2", "office 2b".
 _NUMBER = re.compile(r"#?\d+[a-z]?")
 _FIELDS = frozenset(
-    {"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence", "single"}
+    {"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence", "single", "sets"}
 )
 
 
@@ -35,7 +35,9 @@ class RoomType:
     evidence; ``area`` its typical floor area range in m² (None: no size cue);
     ``narrow`` and ``bare`` the scores added when a room is long and narrow or holds
     only fixtures; ``related`` the types people name it by, with a similarity;
-    ``single`` whether a storey seldom has two rooms of the type.
+    ``single`` whether a storey seldom has two rooms of the type; ``sets`` maps object
+    kinds to ``(count, weight)``: at least ``count`` objects of the kind (or of kinds of
+    it) together say ``weight`` more for the type (a set of chairs around a table).
     """
 
     name: str
@@ -48,6 +50,7 @@ class RoomType:
     bare: float = 0.0
     related: dict[str, float] = field(default_factory=dict)
     single: bool = False
+    sets: dict[str, tuple[int, float]] = field(default_factory=dict)
 
 
 def _number(entry: dict[str, Any], key: str, where: str, default: float) -> float:
@@ -73,6 +76,31 @@ def _evidence(entry: dict[str, Any], where: str) -> dict[str, float]:
                 f"{where}: 'evidence' weight of {label!r} must be a non-zero number"
             )
         out[" ".join(label.lower().split())] = float(weight)
+    return out
+
+
+def _sets(entry: dict[str, Any], where: str) -> dict[str, tuple[int, float]]:
+    table = entry.get("sets", {})
+    if not isinstance(table, dict):
+        raise VocabularyError(f"{where}: 'sets' must be a table of kind = [count, weight]")
+    out: dict[str, tuple[int, float]] = {}
+    for label, value in table.items():
+        ok = (
+            isinstance(value, list)
+            and len(value) == 2
+            and isinstance(value[0], int)
+            and not isinstance(value[0], bool)
+            and value[0] >= 2
+            and isinstance(value[1], int | float)
+            and not isinstance(value[1], bool)
+            and math.isfinite(value[1])
+            and value[1] != 0
+        )
+        if not ok:
+            raise VocabularyError(
+                f"{where}: 'sets' entry {label!r} must be [count >= 2, non-zero weight]"
+            )
+        out[" ".join(label.lower().split())] = (int(value[0]), float(value[1]))
     return out
 
 
@@ -133,6 +161,7 @@ def _room_type(name: str, entry: Any) -> RoomType:
         bare=_number(entry, "bare", where, 0.0),
         related=_related(entry, where),
         single=_flag(entry, "single", where),
+        sets=_sets(entry, where),
     )
 
 
