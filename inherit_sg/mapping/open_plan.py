@@ -16,7 +16,9 @@ about the room type, and the room is split when at least two groups clearly disa
 3. groups with too little evidence seed nothing; when two or more groups are left, the
    room mask (holes under furniture filled) is divided between them by geodesic
    distance to their objects' footprints, every cell to one part and every part one
-   connected piece (where the room's mask is one); a part smaller than ``min_part_m2`` drops its group.
+   connected piece (where the room's mask is one); a part smaller than its type's
+   smallest plausible room (``area`` in ``rooms.toml``, kept between ``min_part_floor_m2``
+   and ``min_part_m2``) drops its group.
 
 In the scene graph (:func:`split_open_plan_rooms`) the parts replace their room: their
 ids are derived from the room's id and a part index ordered by position
@@ -64,7 +66,10 @@ class SplitParams:
     two groups must say for its own type than for the other's to be told apart;
     ``related_agree``: types at least this similar (``related`` in ``rooms.toml``) agree;
     ``min_objects``: the fewest objects a group
-    needs to stand as a room; ``min_part_m2``: the smallest part; ``seed_reach``: how far (m) from the mask an
+    needs to stand as a room, unless its evidence reaches ``alone_evidence`` (a flight
+    of stairs, an exterior door); ``min_part_m2``: the smallest part of a type that
+    has no smaller plausible size (an entrance hall may be as small as
+    ``min_part_floor_m2``); ``seed_reach``: how far (m) from the mask an
     object may stand and still seed its group.
     """
 
@@ -74,7 +79,9 @@ class SplitParams:
     keep_share: float = 0.5
     related_agree: float = 0.7
     min_objects: int = 2
+    alone_evidence: float = 4.0
     min_part_m2: float = 5.0
+    min_part_floor_m2: float = 3.0
     seed_reach: float = 1.0
 
 
@@ -115,6 +122,14 @@ class RoomPart:
             self.mask.origin_x + (float(c.mean()) + 0.5) * res,
             self.mask.origin_y + (float(r.mean()) + 0.5) * res,
         )
+
+
+def smallest_part_m2(room_type: str, params: SplitParams) -> float:
+    """The smallest part a group of ``room_type`` may have: the type's smallest
+    plausible area, kept between ``min_part_floor_m2`` and ``min_part_m2``."""
+    rtype = room_vocab.room_type_table().get(room_type)
+    low = rtype.area[0] if rtype is not None and rtype.area is not None else params.min_part_m2
+    return max(params.min_part_floor_m2, min(params.min_part_m2, low))
 
 
 def part_room_id(room_id: NodeId, index: int) -> NodeId:
@@ -186,7 +201,8 @@ def group_objects(objects: Sequence[ObjectNode], params: SplitParams) -> list[li
     strong = [
         g
         for g in groups
-        if g.best[1] >= params.min_evidence and len(g.objects) >= params.min_objects
+        if g.best[1] >= params.min_evidence
+        and (len(g.objects) >= params.min_objects or g.best[1] >= params.alone_evidence)
     ]
     strong.sort(key=lambda g: min(o.id for o in g.objects))
     return [g.objects for g in strong]
@@ -350,7 +366,11 @@ def split_room(
             float(((labels == k) & mask.cells).sum()) * mask.resolution**2
             for k in range(1, len(groups) + 1)
         ]
-        small = [k for k, s in enumerate(sizes) if s < params.min_part_m2]
+        small = [
+            k
+            for k, s in enumerate(sizes)
+            if s < smallest_part_m2(_Group(list(groups[k])).best[0], params)
+        ]
         if not small:
             break
         weakest = min(small, key=lambda k: _Group(list(groups[k])).best[1])

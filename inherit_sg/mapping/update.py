@@ -15,6 +15,13 @@ import numpy as np
 
 from inherit_sg.mapping.area_labeller import AreaLabeller, RuleAreaLabeller
 from inherit_sg.mapping.areas import cluster_objects
+from inherit_sg.mapping.exterior import (
+    DEFAULT_EXTERIOR,
+    EXTERIOR_DOOR,
+    ExteriorParams,
+    exterior_doors,
+    is_plain_door,
+)
 from inherit_sg.mapping.node_text import node_text
 from inherit_sg.mapping.object_map import ObjectMap
 from inherit_sg.mapping.open_plan import DEFAULT_SPLIT, SplitParams, split_open_plan_rooms
@@ -38,6 +45,7 @@ from inherit_sg.model import (
     Layer,
     ObjectNode,
     ObjectStatus,
+    RoomMask,
     RoomNode,
     SceneGraph,
     make_id,
@@ -97,11 +105,15 @@ class HierarchyBuilder:
         keyframe_view: KeyframeView | None = None,
         open_plan: SplitParams | None = DEFAULT_SPLIT,
         merge: MergeParams | None = DEFAULT_MERGE,
+        exterior: ExteriorParams | None = DEFAULT_EXTERIOR,
     ) -> None:
         """``open_plan``: thresholds of the open-plan room split (None: rooms stay as
         the geometry made them); ``merge``: thresholds of the join of over-segmented
-        rooms, done before the split (None: no join)."""
+        rooms, done before the split (None: no join); ``exterior``: thresholds of the
+        test that names the doors leading out of a floor "exterior door" (None: doors
+        keep their detected label)."""
         self.embedder = embedder
+        self.exterior = exterior
         self.open_plan = open_plan
         self.merge = merge
         self.refresh_descriptions = refresh_descriptions
@@ -124,6 +136,27 @@ class HierarchyBuilder:
         for room_id, room in rooms.items():
             room.types = kept_types(separated[room_id])
             room.label = room_label(separated[room_id])
+
+    def _name_exterior_doors(self, graph: SceneGraph, objects: ObjectMap) -> None:
+        """Label the doors that lead out of their floor "exterior door", and give a
+        door that no longer does its detected label back."""
+        assert self.exterior is not None
+        doors = [
+            t.node
+            for t in objects.objects.values()
+            if t.node.status is not ObjectStatus.REMOVED and is_plain_door(t.label)
+        ]
+        if not doors:
+            return
+        masks: dict[str | None, list[RoomMask]] = defaultdict(list)
+        for room in graph.nodes(Layer.ROOM):
+            if isinstance(room, RoomNode) and room.mask is not None:
+                masks[room.floor_id].append(room.mask)
+        outer = exterior_doors(doors, masks, self.exterior)
+        door_ids = {d.id for d in doors}
+        for tracked in objects.objects.values():
+            if tracked.node.id in door_ids:
+                tracked.node.label = EXTERIOR_DOOR if tracked.node.id in outer else tracked.label
 
     def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
         """Closest room of the object's floor by room centre (objects on thresholds,
@@ -170,6 +203,8 @@ class HierarchyBuilder:
             else:
                 node.area_id = None
             stats.objects += 1
+        if self.exterior is not None:
+            self._name_exterior_doors(graph, objects)
         if self.merge is not None:
             by_room = defaultdict(list, merge_over_segmented_rooms(graph, by_room, self.merge))
         if self.open_plan is not None:
