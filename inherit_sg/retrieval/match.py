@@ -8,7 +8,8 @@ areas) to ``(similarity, reason)``; nodes absent from it have similarity 0.
 Object words are matched in this order, and the reason says which step matched: the
 same word (by lemma), a synonym in the object vocabulary ("couch" and "sofa" are both
 ``sofa``; "bedside table" is a ``nightstand``), a kind of the word asked for ("dining
-table" for "table", from the vocabulary's ``is_a`` or the compound's head noun), then
+table" for "table", from the vocabulary's ``is_a`` or the compound's head noun), a more
+general word than the one asked for ("light" for "ceiling light", less), then
 text-embedding similarity, graded so that only close phrases count. Rooms match by their
 label's type, their inferred alternatives (graded by probability), the request's aliases
 and related types, then by embedding similarity of their labels and alternatives
@@ -52,6 +53,14 @@ FUNCTION_SEMANTIC_MAX = 0.5
 LABEL_SEMANTIC_MAX = 0.8
 # A kind of the requested thing by its name ("dining table" for "table").
 HYPONYM = 0.9
+# A map label more general than the thing asked for ("light" for "ceiling light", "rug"
+# for "bath mat"): the detector's word for it may be the general one.
+HYPERNYM = 0.7
+# ... less by this for every further step up ("light" for "table lamp", after "lamp").
+HYPERNYM_STEP = 0.1
+# ... plus up to this much by text-embedding resemblance to the word asked for, so that
+# "kitchen counter" leads "counter" for "kitchen island".
+HYPERNYM_RESEMBLANCE = 0.05
 # Weaker resemblance than this is ignored.
 MIN_MATCH = 0.1
 
@@ -119,7 +128,21 @@ def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float,
     kind = next((w for w in sorted(wanted) for c in (low, *canon) if is_kind_of(c, w)), None)
     if kind is not None:
         return HYPONYM, f"a {label} is a kind of {kind} (vocabulary)"
+    steps = [
+        (_generality(w, c), w) for w in sorted(wanted) for c in (low, *canon) if is_kind_of(w, c)
+    ]
+    if steps:
+        step, general = min(steps)
+        value = max(HYPERNYM - HYPERNYM_STEP * step, HYPERNYM_STEP)
+        return value, f"a {general} is a kind of {label}, the map's more general word"
     return None
+
+
+def _generality(specific: str, general: str) -> int:
+    """How many steps up the vocabulary's ``is_a`` chain ``general`` lies from
+    ``specific`` (0: its parent, or a head noun the vocabulary does not list)."""
+    chain = object_vocab.is_a(specific)
+    return chain.index(general) if general in chain else 0
 
 
 def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
@@ -127,11 +150,24 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
     nouns = {con.noun.strip().lower()} if con.noun else set()
     out: Matches = {}
     labels = sorted(snap.raw_labels())
+    general: Matches = {}
     for label in labels:
         found = _object_label(label, wanted, nouns)
-        if found is not None:
+        if found is not None and found[0] <= HYPERNYM:
+            general[label] = found  # a more general word: resemblance may say more
+        elif found is not None:
             out[label] = found
-    _semantic(out, [*con.labels, con.noun], labels, labels, sim, LABEL_SEMANTIC_MAX)
+    queries = [q for q in dict.fromkeys([*con.labels, con.noun]) if q]
+    _semantic(out, queries, labels, labels, sim, LABEL_SEMANTIC_MAX)
+    if general and queries:
+        # among general words, the one closer in meaning to the request leads a little
+        names = sorted(general)
+        closeness = graded(sim.matrix(queries, names).max(axis=0), LABEL_COS_LO, LABEL_COS_HI)
+        for label, near in zip(names, closeness, strict=True):
+            value, why = general[label]
+            found = (value + HYPERNYM_RESEMBLANCE * float(near), why)
+            if label not in out or out[label][0] < found[0]:
+                out[label] = found
     return out
 
 

@@ -16,6 +16,13 @@ A room is matched by the first of these steps that finds it, and the reason says
    negated constraint: "outside the dining room" says nothing against the kitchen);
 4. **embedding**: when no room matched by the steps above, text-embedding similarity of
    the request's words to each room's label and alternatives.
+
+A qualifier in the request's words (``[qualifiers]`` in ``rooms.toml``) then says which
+of the matched rooms is meant (:func:`qualify_rooms`): "the master bathroom" / "the en
+suite" is one that opens onto a bedroom, "the guest bathroom" one that does not; "the
+master bedroom" the one with its own bathroom (else the largest), "the spare bedroom"
+another. Matched rooms that are not the one meant keep :data:`QUALIFIER_MISS` of their
+similarity, when the map has both kinds.
 """
 
 from __future__ import annotations
@@ -24,7 +31,7 @@ import numpy as np
 
 from inherit_sg.retrieval.similarity import LABEL_COS_HI, LABEL_COS_LO, PhraseSimilarity, graded
 from inherit_sg.retrieval.snapshot import MapSnapshot
-from inherit_sg.vocab.rooms import related, room_type
+from inherit_sg.vocab.rooms import related, room_qualifier, room_type
 
 Matches = dict[str, tuple[float, str]]
 
@@ -38,6 +45,12 @@ ALT_MIN_P = 0.1
 RELATED_SCALE = 0.75
 # Weaker embedding resemblance than this is ignored.
 MIN_MATCH = 0.1
+# A matched room that is not the one a qualifier means ("the guest bathroom" for the
+# bathroom off the bedroom) keeps this share of its similarity.
+QUALIFIER_MISS = 0.6
+# Room types a private room opens onto, and those a private bedroom has of its own.
+BEDROOMS = frozenset({"bedroom"})
+BATHROOMS = frozenset({"bathroom", "toilet"})
 
 
 def alternative_sim(p: float, p_best: float) -> float | None:
@@ -181,4 +194,44 @@ def match_rooms(
             out[rid] = found
     if not out:
         _by_embedding(out, words, snap, sim)
+    qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
+    if qualifier is not None and rtype is not None:
+        qualify_rooms(out, qualifier, rtype, snap)
     return out
+
+
+def _opens_onto(rid: str, types: frozenset[str], snap: MapSnapshot) -> bool:
+    return any(snap.room_types.get(n) in types for n in snap.neighbours.get(rid, ()))
+
+
+def _private_rooms(rooms: list[str], rtype: str, snap: MapSnapshot) -> set[str]:
+    """The rooms among ``rooms`` a private qualifier means: for bedrooms, the ones with a
+    bathroom of their own, else the largest; for other types, the ones off a bedroom."""
+    if rtype not in BEDROOMS:
+        return {r for r in rooms if _opens_onto(r, BEDROOMS, snap)}
+    own = {r for r in rooms if _opens_onto(r, BATHROOMS, snap)}
+    if own:
+        return own
+    sized = [(m.area_m2, r) for r in rooms if (m := snap.rooms[r].mask) is not None]
+    return {max(sized)[1]} if sized else set()
+
+
+def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -> None:
+    """Lower the matched rooms that are not the one ``qualifier`` ("private" or
+    "shared") means to :data:`QUALIFIER_MISS` of their similarity, in place; nothing
+    changes unless the matched rooms include both kinds."""
+    matched = sorted(r for r in out if r in snap.rooms)
+    private = _private_rooms(matched, rtype, snap)
+    meant = private if qualifier == "private" else set(matched) - private
+    if not meant or len(meant) == len(matched):
+        return
+    what = {
+        ("private", True): "with a bathroom of its own, or the largest",
+        ("private", False): "off a bedroom",
+        ("shared", True): "not the main bedroom",
+        ("shared", False): "not off a bedroom",
+    }[(qualifier, rtype in BEDROOMS)]
+    for rid in matched:
+        if rid not in meant:
+            value, why = out[rid]
+            out[rid] = (value * QUALIFIER_MISS, f"{why}; but the {qualifier} one is meant ({what})")

@@ -73,6 +73,10 @@ _AS_CLOSEST = Superlative(measure="closest")
 STRONG_MATCH = 0.5
 # Candidates scoring within this of the best form the tier a superlative ranks.
 SUPERLATIVE_TIER = 0.05
+# "Closest to the front door" measures to the landmarks that match best: a landmark
+# whose match is more than this below the best one's is left out (a plain door when
+# the map knows the exterior door).
+LANDMARK_TIER = 0.15
 # Superlatives measured on an object's box (compared only between well-observed boxes).
 BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest"})
 # Ordinals and "the middle one": the chosen candidate scores 1, the others this much
@@ -427,10 +431,14 @@ class Scorer:
             return self._height(node_id)
         if con.measure in ("closest", "farthest") and landmarks:
             here = self.snap.position(node_id)
+            top = max(q for _, q in landmarks) - LANDMARK_TIER
             dists = [
                 math.dist(here, there)
-                for lid, _ in landmarks
-                if lid != node_id and here is not None and (there := self.snap.position(lid))
+                for lid, q in landmarks
+                if q >= top
+                and lid != node_id
+                and here is not None
+                and (there := self.snap.position(lid))
             ]
             return min(dists) if dists else None
         if con.measure in ("closest", "farthest") and viewer is not None:

@@ -268,6 +268,27 @@ def room_type(phrase: str) -> str | None:
 
 
 @lru_cache(maxsize=1)
+def _qualifiers() -> dict[str, str]:
+    data = load_table("rooms").get("qualifiers", {})
+    if not isinstance(data, dict):
+        raise VocabularyError(f"{_FILE}: 'qualifiers' must be a table")
+    out: dict[str, str] = {}
+    for kind in ("private", "shared"):
+        for phrase in string_list(data, kind, f"{_FILE} [qualifiers]"):
+            out[" ".join(phrase.lower().split())] = kind
+    return out
+
+
+def room_qualifier(phrase: str) -> str | None:
+    """Which of several rooms of a type ``phrase`` means: "private" ("master bathroom",
+    "en suite"), "shared" ("guest bathroom", "spare room") or None, by the words of
+    ``[qualifiers]`` in ``rooms.toml`` (the longest phrase found wins)."""
+    text = " " + " ".join(_words(phrase)) + " "
+    found = [(len(q), kind) for q, kind in _qualifiers().items() if f" {q} " in text]
+    return max(found)[1] if found else None
+
+
+@lru_cache(maxsize=1)
 def level_words() -> tuple[str, ...]:
     """Words naming floors in summaries, lowest first ("ground", "second", …)."""
     return string_list(load_table("rooms"), "level_words", _FILE)
@@ -277,4 +298,5 @@ def clear_caches() -> None:
     """Forget the parsed tables (after the files or ``DATA_DIR`` changed; tests)."""
     for fn in (_types, room_type_table, evidence, _related_table, fixtures, room_words):
         fn.cache_clear()
+    _qualifiers.cache_clear()
     level_words.cache_clear()

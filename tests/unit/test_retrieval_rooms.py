@@ -22,11 +22,13 @@ from inherit_sg.retrieval.room_match import (
     ALT_HI,
     ALT_LO,
     LABEL_LO,
+    QUALIFIER_MISS,
     RELATED_SCALE,
     alternative_sim,
     label_sim,
 )
 from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from inherit_sg.vocab.rooms import room_qualifier
 from tests.unit.retrieval_fixtures import hash_similarity
 from tests.unit.retrieval_rank import rank, request
 
@@ -166,3 +168,54 @@ def test_ranking_prefers_the_room_inferred_as_the_one_asked_for() -> None:
     ranked, _ = rank(snap, request("tv", RoomConstraint(type="tv room", name="tv room")))
     assert ranked[0].id == "obj:tv-a"
     assert ranked[0].score > ranked[1].score
+
+
+def _house_with_an_en_suite() -> MapSnapshot:
+    """Bedrooms m (with its own bathroom e) and s; bathrooms e (off m) and g (off the
+    hall h)."""
+    bath = (("bathroom", 0.9),)
+    bed = (("bedroom", 0.9),)
+    g = _graph(
+        {
+            "m": ("bedroom", bed),
+            "e": ("bathroom", bath),
+            "g": ("bathroom", bath),
+            "s": ("bedroom", bed),
+            "h": ("hallway", (("hallway", 0.9),)),
+        }
+    )
+    for a, b in (("m", "e"), ("m", "h"), ("s", "h"), ("g", "h")):
+        g.add_edge(Edge.make(EdgeKind.CONNECTS, f"room:{a}", f"room:{b}"))
+    return build_snapshot(g, (1,))
+
+
+def test_master_and_guest_bathrooms_are_told_apart_by_what_they_open_onto() -> None:
+    snap = _house_with_an_en_suite()
+    master = _room(snap, "bathroom", "master bathroom")
+    assert master["room:e"][0] == 1.0
+    assert master["room:g"][0] == pytest.approx(QUALIFIER_MISS)
+    assert "the private one is meant (off a bedroom)" in master["room:g"][1]
+    guest = _room(snap, "bathroom", "guest bathroom")
+    assert guest["room:g"][0] == 1.0 and guest["room:e"][0] == pytest.approx(QUALIFIER_MISS)
+    assert _room(snap, "bathroom", "en suite")["room:e"][0] == 1.0
+    assert _room(snap, "bathroom", "en suite")["room:g"][0] < 1.0
+    # no qualifier: both bathrooms match fully
+    plain = _room(snap, "bathroom", "bathroom")
+    assert plain["room:e"][0] == plain["room:g"][0] == 1.0
+
+
+def test_the_master_bedroom_is_the_one_with_its_own_bathroom() -> None:
+    snap = _house_with_an_en_suite()
+    master = _room(snap, "bedroom", "master bedroom")
+    assert master["room:m"][0] == 1.0 and master["room:s"][0] < 1.0
+    spare = _room(snap, "bedroom", "spare bedroom")
+    assert spare["room:s"][0] == 1.0 and spare["room:m"][0] < 1.0
+
+
+def test_room_qualifier_words() -> None:
+    assert room_qualifier("master bathroom") == "private"
+    assert room_qualifier("the en-suite") == "private"
+    assert room_qualifier("Guest Bathroom") == "shared"
+    assert room_qualifier("spare room") == "shared"
+    assert room_qualifier("bathroom") is None
+    assert room_qualifier("mastermind room") is None

@@ -172,6 +172,12 @@ class ClauseParser(Grammar):
                 holder = NP()
                 self._placement(holder, tok.tags["placement"], tok.text)
                 self._route(out, [*holder.constraints, *holder.places])
+            elif tok.has("or") and self.np_start(1) and self._negation_open():
+                self.advance()  # "not in the bedroom or the living room"
+                self._negated_alternative(out, refine)
+            elif tok.has("or") and self.at("prep", k=1) and self._negation_open():
+                self.advance()  # "neither in the kitchen nor in the dining room"
+                self.negate()
             elif tok.has("super") and out.head is not None:
                 self._attach_postmodifiers(out.head)
             elif out.head is not None and tok.has("with", "without", "have"):
@@ -450,6 +456,48 @@ class ClauseParser(Grammar):
         if self._next_errand(out, np, neg, j):
             return
         self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
+
+    def _negation_open(self) -> bool:
+        """Whether a negation earlier in this clause still holds at the current token:
+        no comma, "and", "but" or subordinate clause since it."""
+        for j in range(self.i - 1, -1, -1):
+            tok = self.toks[j]
+            if tok.has("neg"):
+                return True
+            if tok.has("comma", "and", "but", "sub"):
+                return False
+        return False
+
+    def _negated_alternative(self, out: Clause, refine: bool) -> None:
+        """The phrase after "or" / "nor" in the scope of a negation is ruled out too: a
+        room ("not in the bedroom or the living room"), or a landmark of the same
+        relation ("not on the desk or the table"); any other phrase is negated."""
+        start = self.i
+        np = self.parse_np()
+        if np is None:
+            if self.i == start:
+                self.advance()
+            return
+        if np.kind in (ROOM, AREA):
+            out.places.append(self._place(np, True))
+            return
+        head = out.head
+        last = next(
+            (
+                c
+                for c in reversed(head.constraints if head is not None else [])
+                if isinstance(c, RelationConstraint) and c.negated and c.landmark2 is None
+            ),
+            None,
+        )
+        if head is not None and last is not None and np.kind == OBJECT and np.labels:
+            head.constraints.append(
+                replace(last, landmark=np.landmark(), text=f"not {last.predicate} {np.noun}")
+            )
+            return
+        self.i = start
+        self.negate()
+        self._noun_phrase(out, refine)
 
     def _next_errand(self, out: Clause, np: NP, neg: bool, j: int) -> bool:
         """ "Go to the sofa and pick up the remote", "… and find the basket": the object

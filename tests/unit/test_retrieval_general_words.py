@@ -1,0 +1,76 @@
+"""A map label more general than the word asked for ("light" for "ceiling light") is a
+weaker match than the word itself, graded by how far up the vocabulary it lies; and
+"closest to the front door" measures to the exterior door, not to any door."""
+
+from __future__ import annotations
+
+from inherit_sg.model import BBox3D, FloorNode, Layer, ObjectNode, SceneGraph, make_id
+from inherit_sg.retrieval import parse_rules
+from inherit_sg.retrieval.constraints import LabelConstraint
+from inherit_sg.retrieval.match import (
+    HYPERNYM,
+    HYPERNYM_RESEMBLANCE,
+    HYPERNYM_STEP,
+    resolve_matches,
+)
+from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from tests.unit.retrieval_fixtures import hash_similarity
+from tests.unit.retrieval_rank import rank
+
+
+def _snap(objects: list[tuple[str, str, float, float]]) -> MapSnapshot:
+    """One floor; objects ``(key, label, x, y)`` 0.5 m wide, 1 m tall."""
+    g = SceneGraph()
+    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
+    g.add_or_update(floor)
+    for key, label, x, y in objects:
+        g.add_or_update(
+            ObjectNode(
+                make_id(Layer.OBJECT, key),
+                label,
+                (x, y, 0.5),
+                BBox3D((x - 0.25, y - 0.25, 0.0), (x + 0.25, y + 0.25, 1.0)),
+                floor_id=floor.id,
+            )
+        )
+    return build_snapshot(g, (1,))
+
+
+def _labels(snap: MapSnapshot, word: str) -> dict[str, float]:
+    con = LabelConstraint(id="c1", labels=(word,), noun=word)
+    found = resolve_matches(con, "object", snap, hash_similarity())
+    assert found is not None
+    return {label: value for label, (value, _) in found.items()}
+
+
+def test_a_more_general_map_label_matches_less_the_further_up_it_lies() -> None:
+    snap = _snap([("a", "light", 0, 0), ("b", "lamp", 3, 0), ("c", "rug", 6, 0)])
+
+    def near(value: float, base: float) -> bool:
+        return base <= value <= base + HYPERNYM_RESEMBLANCE
+
+    assert near(_labels(snap, "ceiling light")["light"], HYPERNYM)
+    table_lamp = _labels(snap, "table lamp")
+    assert near(table_lamp["lamp"], HYPERNYM)
+    assert near(table_lamp["light"], HYPERNYM - HYPERNYM_STEP)
+    assert table_lamp["lamp"] > table_lamp["light"]
+    assert near(_labels(snap, "bath mat")["rug"], HYPERNYM)
+    # the word itself still wins, and a general request is not lowered
+    assert _labels(snap, "lamp")["lamp"] == 1.0
+
+
+def test_closest_to_the_front_door_measures_to_the_exterior_door() -> None:
+    snap = _snap(
+        [
+            ("front", "exterior door", 0, 0),
+            ("inner", "door", 10, 0),
+            ("m1", "mirror", 1.5, 0),
+            ("m2", "mirror", 10.5, 0),
+        ]
+    )
+    ranked, _ = rank(snap, parse_rules("the mirror closest to the front door"))
+    assert ranked[0].id == "obj:m1"
+    # a map that knows no exterior door measures to every door alike
+    plain = _snap([("inner", "door", 10, 0), ("m1", "mirror", 1.5, 0), ("m2", "mirror", 10.5, 0)])
+    ranked, _ = rank(plain, parse_rules("the mirror closest to the front door"))
+    assert ranked[0].id == "obj:m2"
