@@ -77,6 +77,13 @@ SUPERLATIVE_TIER = 0.05
 # whose match is more than this below the best one's is left out (a plain door when
 # the map knows the exterior door).
 LANDMARK_TIER = 0.15
+# People count and compare among the things in front of them: with a viewpoint set
+# ("standing at the counter facing the bar, the stool on the left") only candidates in
+# its landmark's room or within VIEW_REACH metres of it are ordered (when any is), and "the stool
+# farthest from the dishwasher" compares the candidates in the landmark's room (within
+# LANDMARK_REACH of it when it has none), when at least two are there.
+VIEW_REACH = 2.0
+LANDMARK_REACH = 5.0
 # Superlatives measured on an object's box (compared only between well-observed boxes).
 BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest"})
 # Ordinals and "the middle one": the chosen candidate scores 1, the others this much
@@ -477,8 +484,12 @@ class Scorer:
         best = max(c.score for c in live)
         tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
         if con.measure in ("ordinal", "middle"):
-            self._by_position(con, tier, landmarks, notes, viewing)
+            self._by_position(
+                con, self._near_viewpoint(con, tier, notes, viewing), landmarks, notes, viewing
+            )
             return
+        if con.measure == "farthest" and landmarks:
+            tier = self._near_landmarks(con, tier, landmarks, notes)
         if con.measure in BOX_MEASURES:
             tier = self._measured_boxes(con, tier)
         viewer = None
@@ -499,6 +510,69 @@ class Scorer:
             ratio = (v / top if top > 0 else 1.0) if want_max else (top / v if v > 0 else 1.0)
             cand.terms[con.id].sim = float(min(1.0, ratio)) if v != top else 1.0
             cand.terms[con.id].why = f"{con.measure}: {v:.3g} (best {top:.3g})"
+
+    def _near_viewpoint(
+        self, con: Superlative, tier: list[Scored], notes: list[str], viewing: _Viewing
+    ) -> list[Scored]:
+        """With a viewpoint set, the candidates in the room of the landmark the viewer
+        stands at or faces, or within :data:`VIEW_REACH` of it (all of them without one,
+        or when none is there)."""
+        if viewing.finder.viewpoint is None or len(tier) < 2:
+            return tier
+        view = viewing.view([c.id for c in tier], con.id)
+        spot = self.snap.position(view.anchor) if view is not None and view.anchor else None
+        if spot is None:
+            return tier
+        room = self.snap.room_of.get(view.anchor or "")
+        near = [
+            c
+            for c in tier
+            if (room is not None and self.snap.room_of.get(c.id) == room)
+            or (
+                (here := self.snap.position(c.id)) is not None
+                and math.dist(here[:2], spot[:2]) <= VIEW_REACH
+            )
+        ]
+        if not near or len(near) == len(tier):
+            return tier
+        for cand in tier:
+            if cand not in near:
+                cand.terms[con.id].why = "out of the viewpoint's room: not ordered"
+        notes.append(
+            f"{con.id}: the {len(near)} of {len(tier)} candidates in the viewpoint's room "
+            "are ordered"
+        )
+        return near
+
+    def _near_landmarks(
+        self, con: Superlative, tier: list[Scored], landmarks: Landmarks, notes: list[str]
+    ) -> list[Scored]:
+        """The candidates in the room of a best-matching landmark (within
+        :data:`LANDMARK_REACH` of one when the landmarks have no room); all of them when
+        fewer than two are."""
+        top = max(q for _, q in landmarks) - LANDMARK_TIER
+        marks = [lid for lid, q in landmarks if q >= top]
+        rooms = {self.snap.room_of.get(lid) for lid in marks} - {None}
+        spots = [p for lid in marks if (p := self.snap.position(lid)) is not None]
+
+        def near(cid: str) -> bool:
+            if rooms:
+                return self.snap.room_of.get(cid) in rooms
+            here = self.snap.position(cid)
+            return here is not None and any(
+                math.dist(here[:2], p[:2]) <= LANDMARK_REACH for p in spots
+            )
+
+        kept = [c for c in tier if near(c.id)]
+        if len(kept) < 2 or len(kept) == len(tier):
+            return tier
+        for cand in tier:
+            if cand not in kept:
+                cand.terms[con.id].why = "far from the landmark: not compared"
+        notes.append(
+            f"{con.id}: {len(kept)} of {len(tier)} candidates near the landmark are compared"
+        )
+        return kept
 
     def _by_position(
         self,

@@ -123,12 +123,14 @@ class ViewerPose:
 @dataclass(frozen=True)
 class View:
     """A viewer in the floor plane: ``position`` (x, y), unit ``forward``, which source
-    chose it (``SOURCES``) and a trace phrase."""
+    chose it (``SOURCES``), a trace phrase and, for a viewpoint, the landmark node it
+    stands at or faces (``anchor``)."""
 
     position: tuple[float, float]
     forward: tuple[float, float]
     source: str
     why: str
+    anchor: str | None = None
 
     @property
     def right(self) -> tuple[float, float]:
@@ -241,7 +243,9 @@ class ViewFinder:
             return View((x, y), self.robot.forward, "robot", missed + why)
         found = self._from_keyframe(group)
         if found is not None:
-            return View(found.position, found.forward, found.source, missed + found.why)
+            return View(
+                found.position, found.forward, found.source, missed + found.why, found.anchor
+            )
         room = self._from_room(group, centroid, spread)
         return View(room.position, room.forward, room.source, missed + room.why)
 
@@ -286,7 +290,7 @@ class ViewFinder:
         else:  # back_to
             away = (-towards[0], -towards[1])
             view = View((float(centroid[0]), float(centroid[1])), away, "viewpoint", "")
-        return View(view.position, view.forward, view.source, f"{kind} {label} {lid}"), ""
+        return View(view.position, view.forward, view.source, f"{kind} {label} {lid}", lid), ""
 
     def _from_keyframe(self, group: tuple[str, ...]) -> View | None:
         if self.keyframes is None:

@@ -1,0 +1,73 @@
+"""People compare among the things in front of them: "the stool farthest from the
+dishwasher" is one of the kitchen's stools, not the one in the bathroom down the hall,
+and "standing at the counter, the stool on the left" orders the stools of the
+counter's room."""
+
+from __future__ import annotations
+
+from inherit_sg.model import (
+    BBox3D,
+    Edge,
+    EdgeKind,
+    FloorNode,
+    Layer,
+    ObjectNode,
+    RoomNode,
+    SceneGraph,
+    make_id,
+)
+from inherit_sg.retrieval import parse_rules
+from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from tests.unit.retrieval_rank import rank
+
+# (key, label, room, x, y)
+KITCHEN_AND_BATH = [
+    ("dw", "dishwasher", "k", 0.0, 0.0),
+    ("counter", "counter", "k", 2.0, 1.0),
+    ("s1", "stool", "k", 1.0, 2.0),
+    ("s2", "stool", "k", 2.0, 2.0),
+    ("s3", "stool", "k", 3.0, 2.0),
+    ("s4", "stool", "b", 7.0, 0.0),  # a shower stool behind a wall
+]
+
+
+def _snap(objects: list[tuple[str, str, str, float, float]]) -> MapSnapshot:
+    g = SceneGraph()
+    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
+    g.add_or_update(floor)
+    for key, label, x in (("k", "kitchen", 1.5), ("b", "bathroom", 7.0)):
+        room = RoomNode(make_id(Layer.ROOM, key), label, floor_id=floor.id, position=(x, 1, 0))
+        g.add_or_update(room)
+        g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
+    for key, label, room_key, x, y in objects:
+        g.add_or_update(
+            ObjectNode(
+                make_id(Layer.OBJECT, key),
+                label,
+                (x, y, 0.4),
+                BBox3D((x - 0.2, y - 0.2, 0.0), (x + 0.2, y + 0.2, 0.8)),
+                room_id=make_id(Layer.ROOM, room_key),
+                floor_id=floor.id,
+            )
+        )
+    return build_snapshot(g, (1,))
+
+
+def test_farthest_compares_the_landmarks_room() -> None:
+    snap = _snap(KITCHEN_AND_BATH)
+    ranked, log = rank(snap, parse_rules("the stool farthest from the dishwasher"))
+    assert ranked[0].id == "obj:s3"
+    assert any("3 of 4 candidates near the landmark are compared" in line for line in log)
+    # with the landmark's room holding one stool only, every stool is compared
+    alone = _snap([o for o in KITCHEN_AND_BATH if o[0] not in ("s1", "s2")])
+    ranked, _ = rank(alone, parse_rules("the stool farthest from the dishwasher"))
+    assert ranked[0].id == "obj:s4"
+
+
+def test_a_viewpoint_orders_the_candidates_of_its_room() -> None:
+    snap = _snap(KITCHEN_AND_BATH)
+    ranked, log = rank(snap, parse_rules("standing at the counter, the stool on the right"))
+    assert ranked[0].id in {"obj:s1", "obj:s2", "obj:s3"}
+    assert any("in the viewpoint's room are ordered" in line for line in log)
+    by_id = {c.id: c for c in ranked}
+    assert by_id["obj:s4"].score < ranked[0].score
