@@ -520,10 +520,11 @@ class Scorer:
         if viewing.finder.viewpoint is None or len(tier) < 2:
             return tier
         view = viewing.view([c.id for c in tier], con.id)
-        spot = self.snap.position(view.anchor) if view is not None and view.anchor else None
-        if spot is None:
+        anchor = view.anchor if view is not None else None
+        spot = self.snap.position(anchor) if anchor else None
+        if anchor is None or spot is None:
             return tier
-        room = self.snap.room_of.get(view.anchor or "")
+        room = self.snap.room_of.get(anchor)
         near = [
             c
             for c in tier
