@@ -131,13 +131,16 @@ def crop_colour(image: np.ndarray, box: Box) -> str:
 
 # A candidate whose label / function match is weaker than this is not what was asked for.
 NAMED_MIN = 0.5
+# Attributes the map measures over many views (why texts of attribute_sim): a candidate
+# whose measured value differs from the one asked for is not what was asked for.
+MEASURED_ATTRIBUTES = ("colour is ", "material is ")
 
 
 def graph_failures(ev: Evidence) -> list[str]:
     """Positive spatial / room / area / floor constraints the graph does not support
     (a relation credited only for standing near the landmark is not supported), negated
-    ones it does, and a thing that is not what was asked for (its label or function
-    match below :data:`NAMED_MIN`)."""
+    ones it does, a colour or material the map measured otherwise, and a thing that is
+    not what was asked for (its label or function match below :data:`NAMED_MIN`)."""
     out: list[str] = []
     if ev.spec.levels is not None and not ev.scored.h_floor:
         out.append("not on the requested floor")
@@ -147,6 +150,10 @@ def graph_failures(ev: Evidence) -> list[str]:
         best = max(positive, key=lambda t: t.sim)
         out.append(f"{best.cid} ({best.kind}) barely matches: {best.why}")
     for term in ev.scored.terms.values():
+        if term.kind == "attribute" and term.polarity > 0 and term.sim <= 0.0:
+            if term.why.startswith(MEASURED_ATTRIBUTES):  # "colour is white", asked brown
+                out.append(f"{term.cid} (attribute) contradicted by the map: {term.why}")
+            continue
         if term.kind not in ("relation", "room", "area"):
             continue
         unsupported = term.sim <= 0.0 or term.why.startswith(PROXIMITY_NOTE)
@@ -163,14 +170,16 @@ class OfflineVerifier:
     name = "offline"
 
     def verify(self, ev: Evidence, box: Box | None) -> Verdict:
-        """Reject on a colour the pixels contradict or a constraint the graph fails."""
+        """Reject on a constraint the graph fails, or a colour the crop contradicts
+        unless the map measured just that colour over all the views of the object (one
+        crop is a noisier reading of the same pixels)."""
         failures = graph_failures(ev)
         if ev.image is not None and box is not None:
             seen = crop_colour(ev.image, box)
             for con in ev.spec.constraints:
                 if not (isinstance(con, AttributeConstraint) and con.key == "colour"):
                     continue
-                if seen == "unknown":
+                if seen == "unknown" or _map_agrees(ev, con):
                     continue
                 if (seen == con.value) == con.negated:
                     failures.append(
@@ -179,6 +188,12 @@ class OfflineVerifier:
         if failures:
             return Verdict(False, "; ".join(failures), box)
         return Verdict(True, "pixels and graph agree with the request", box)
+
+
+def _map_agrees(ev: Evidence, con: AttributeConstraint) -> bool:
+    """Whether the map's measured value fully supports ``con`` for the candidate."""
+    term = ev.scored.terms.get(con.id)
+    return term is not None and term.sim >= 1.0 and not con.negated
 
 
 def describe_colour(con: AttributeConstraint) -> str:

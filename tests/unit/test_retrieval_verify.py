@@ -120,6 +120,22 @@ def test_graph_failures_reject_a_thing_that_is_not_what_was_asked() -> None:
     assert graph_failures(ev) == []
 
 
+def test_the_maps_measured_colour_outweighs_one_crop() -> None:
+    """A colour the map measured over all views of the object is not overruled by one
+    crop; a colour or material the map measured otherwise rejects the candidate."""
+    ev = evidence("the red chair", "obj:c3", BLUE)
+    c2 = next(c.id for c in ev.spec.constraints if c.kind == "attribute")
+    ev.scored.terms[c2] = Term(c2, "attribute", 0.6, 1, 1.0, "colour is red")
+    assert OfflineVerifier().verify(ev, recorded_box(ev)).ok is True
+    ev.scored.terms[c2] = Term(c2, "attribute", 0.6, 1, 0.0, "colour is blue")
+    verdict = OfflineVerifier().verify(ev, recorded_box(ev))
+    assert verdict.ok is False and "contradicted by the map: colour is blue" in verdict.reason
+    # an unobserved value rejects nothing by itself
+    ev = evidence("the red chair", "obj:c3", None)
+    ev.scored.terms[c2] = Term(c2, "attribute", 0.6, 1, 0.35, "colour not observed")
+    assert graph_failures(ev) == []
+
+
 class BoxSegmenter:
     """A real (if tiny) segmenter: thresholds saturated pixels of the picture."""
 
