@@ -129,7 +129,7 @@ def room_type_scores(
     chains = list(dict.fromkeys(_kind_chain(lab) for lab in sorted(raw)))
     by_kind = {chain[0]: chain for chain in chains}  # one vote per kind ("couch", "sofa")
     fixtures = room_vocab.fixtures()
-    objects = [_kind_chain(lab) for lab in every if lab not in fixtures]
+    counted = [_kind_chain(lab) for lab in every]  # sets count fixtures too: "3 doors"
     bare = bool(raw) and all(lab in fixtures or _kind_chain(lab)[0] in fixtures for lab in raw)
     area = area_m2 if area_m2 is not None else (shape.area_m2 if shape is not None else None)
     narrowness = shape.narrowness if shape is not None else 0.0
@@ -139,7 +139,7 @@ def room_type_scores(
             rtype.base
             + PRIOR_WEIGHT * math.log(rtype.prior)
             + _evidence(list(by_kind.values()), rtype.evidence)
-            + _set_evidence(objects, rtype.sets)
+            + _set_evidence(counted, rtype.sets)
             - _size_penalty(area, rtype.area)
             + rtype.narrow * narrowness
             + (rtype.bare if bare else 0.0)

@@ -6,6 +6,7 @@ baseline."""
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -156,6 +157,14 @@ def test_map_changes_and_visual_verification(tmp_path: Path) -> None:
                 )
             ]
         )
+        # the map measured the chair red over all its views: one crop does not overrule it
+        result = engine.query("the red chair")
+        assert result.answer_id == "obj:c3"
+        assert any("verify obj:c3: confirmed" in line for line in result.trace)
+        # without a measured colour, the crop decides
+        chair = engine.snapshot()[0].objects["obj:c3"]
+        assert isinstance(chair, ObjectNode)
+        store.upsert_nodes([replace(chair, attributes={}, description="a chair")])
         result = engine.query("the red chair")
         assert result.candidates[0]["id"] == "obj:c3"
         assert result.answer_id != "obj:c3"

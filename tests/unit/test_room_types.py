@@ -94,6 +94,19 @@ def test_an_empty_narrow_room_is_a_hallway() -> None:
     assert infer_room_types([], shape=square)[0][0] == "other room"
 
 
+def test_a_room_with_many_doors_joins_others() -> None:
+    """Three doors or more say hallway, even around a staircase; a bedroom with its
+    closet and bathroom doors stays a bedroom."""
+    square = RoomShape(area_m2=16.0, width_m=4.0, elongation=1.0)
+    hall = ["door", "door", "door", "console table", "painting", "rug"]
+    assert infer_room_types(hall, shape=square)[0][0] == "hallway"
+    assert infer_room_types(hall[2:], shape=square)[0][0] != "hallway"
+    stair_hall = ["stairs", "door", "door", "door", "door", "window"]
+    assert infer_room_types(stair_hall, shape=square)[0][0] == "hallway"
+    bedroom = ["bed", "nightstand", "door", "door", "door", "wardrobe"]
+    assert infer_room_types(bedroom, shape=square)[0][0] == "bedroom"
+
+
 def test_size_hints() -> None:
     # a toilet with towels and a cabinet: the small room is a toilet, the large a bathroom
     labels = ["toilet", "sink", "towel", "bathroom cabinet", "mirror"]
