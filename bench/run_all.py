@@ -34,6 +34,8 @@ RESULTS = ROOT / "bench" / "results" / "run_all"
 SCALE_JSON = ROOT / "bench" / "results" / "retrieval.json"
 PARSE_JSON = ROOT / "bench" / "results" / "parse.json"
 MP3D_REQUESTS_JSON = ROOT / "bench" / "results" / "mp3d_requests.json"
+MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
+MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
 DOCS = ROOT / "docs"
 MP3D_HOUSE = ROOT / ".." / "shared" / "data" / "real" / "mp3d" / "example_mp3d_scene.house"
 WIDTH, HEIGHT = 640, 480
@@ -158,7 +160,12 @@ def render(docs: list[dict[str, Any]]) -> Path:
     rel = {k: str(v.relative_to(DOCS)) for k, v in images.items()}
     sets = {
         name: json.loads(path.read_text(encoding="utf-8"))
-        for name, path in (("parse", PARSE_JSON), ("mp3d", MP3D_REQUESTS_JSON))
+        for name, path in (
+            ("parse", PARSE_JSON),
+            ("mp3d", MP3D_REQUESTS_JSON),
+            ("mp3d_rooms", MP3D_ROOMS_JSON),
+            ("mp3d_objects", MP3D_OBJECTS_JSON),
+        )
         if path.is_file()
     }
     page = DOCS / "benchmarks.md"

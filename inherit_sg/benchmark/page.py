@@ -110,6 +110,15 @@ def render_page(
             "`bench/results/mp3d_requests.json` (`python bench/mp3d_requests.py`).",
             request_sets_section.requests_section(sets["mp3d"]),
         ]
+    if "mp3d_rooms" in sets:
+        parts += [
+            "## Rooms and objects on the Matterport3D house",
+            "The map of the rendered walk against the ten annotated regions of the real "
+            "layout (mutual-majority matching), and the object categories in view; from "
+            "`bench/results/mp3d_rooms.json` and `mp3d_objects.json` (`python "
+            "bench/mp3d_rooms.py`, `python bench/mp3d_objects.py`).",
+            request_sets_section.mp3d_rooms_section(sets["mp3d_rooms"], sets.get("mp3d_objects")),
+        ]
     if scale_rows:
         parts += [
             "## Latency by map size",

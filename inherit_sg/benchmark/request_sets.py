@@ -62,3 +62,41 @@ def requests_section(doc: dict[str, Any]) -> str:
         f"{num(lat.get('p50'))} ms, p99 {num(lat.get('p99'))} ms (first pass)."
     )
     return table(header, rows) + "\n\n" + note
+
+
+def mp3d_rooms_section(rooms: dict[str, Any], objects: dict[str, Any] | None = None) -> str:
+    """Region by region: the map room matched to each MP3D region, its label and whether
+    the region's type is its label or among its two best types; then the totals, and the
+    object categories held (``bench/mp3d_rooms.py``, ``bench/mp3d_objects.py``)."""
+    header = ["region", "type", "seen m²", "matched map room", "label", "type is label / top 2"]
+    rows = []
+    for reg in rooms.get("regions", []):
+        ok = "yes" if reg.get("label_exact") else ("top 2" if reg.get("label_top2") else "no")
+        rows.append(
+            [
+                str(reg.get("region", "")),
+                str(reg.get("type", "")),
+                f"{num(reg.get('mapped_m2'), 1)} / {num(reg.get('area_m2'), 1)}",
+                str(reg.get("matched") or "—"),
+                str(reg.get("label") or "—"),
+                ok if reg.get("matched") else "—",
+            ]
+        )
+    t = rooms.get("totals", {})
+    lines = [
+        table(header, rows),
+        f"Rooms: {t.get('matched', '?')} matched of {t.get('map_rooms', '?')} map rooms and "
+        f"{t.get('regions', '?')} regions: precision {num(t.get('precision'), 2)}, recall "
+        f"{num(t.get('recall'), 2)}; region type is the label for {t.get('label_exact', '?')}"
+        f" and among the two best types for {t.get('label_top2', '?')} of "
+        f"{t.get('regions', '?')}.",
+    ]
+    if objects:
+        lines.append(
+            f"Objects: {objects.get('categories_found', '?')} of "
+            f"{objects.get('categories_seen', '?')} categories in view are in the map; "
+            f"{objects.get('objects_held', '?')} of {objects.get('objects_seen', '?')} objects "
+            f"in view have a map object of their category within 1 m "
+            f"({objects.get('objects_found', '?')} within 0.5 m)."
+        )
+    return "\n\n".join(lines)

@@ -146,3 +146,26 @@ def test_figures_are_written_as_png(tmp_path: Path) -> None:
     for path in paths:
         data = path.read_bytes()
         assert data.startswith(PNG_MAGIC) and len(data) > 5000
+
+
+def test_page_shows_the_mp3d_rooms_region_by_region() -> None:
+    rooms = {
+        "regions": [
+            {"region": "r0", "type": "bedroom", "area_m2": 17.3, "mapped_m2": 7.9,
+             "matched": "room:5", "label": "bedroom", "label_exact": True, "label_top2": True},
+            {"region": "r6", "type": "entryway", "area_m2": 7.3, "mapped_m2": 7.2,
+             "matched": None, "label": None, "label_exact": False, "label_top2": False},
+        ],
+        "totals": {"regions": 2, "map_rooms": 2, "matched": 1, "precision": 0.5,
+                   "recall": 0.5, "label_exact": 1, "label_top2": 1},
+    }  # fmt: skip
+    objects = {"categories_seen": 3, "categories_found": 3, "objects_seen": 5,
+               "objects_held": 5, "objects_found": 4}  # fmt: skip
+    page = render_page(
+        [make_doc("house-a")], None, {}, "", {"mp3d_rooms": rooms, "mp3d_objects": objects}
+    )
+    assert "## Rooms and objects on the Matterport3D house" in page
+    assert "| r0 | bedroom | 7.9 / 17.3 | room:5 | bedroom | yes |" in page
+    assert "| r6 | entryway | 7.2 / 7.3 | — | — | — |" in page
+    assert "precision 0.50, recall 0.50" in page
+    assert "3 of 3 categories in view are in the map" in page
