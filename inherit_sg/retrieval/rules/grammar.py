@@ -248,6 +248,22 @@ class Grammar(Cursor):
             np.labels = [_open_label(run)]
         if np.kind == OBJECT and len(run) > 1:
             self.notes.append(f"compound noun {np.noun!r} → label {'/'.join(np.labels)}")
+            self._room_modifier(np, run)
+
+    def _room_modifier(self, np: NP, run: list[Tok]) -> None:
+        """A room word before the head noun says where the thing is: "the bedroom TV",
+        "the living room lamp" (a room constraint on the phrase; compounds the object
+        vocabulary knows, such as "office chair", are one token and keep their kind)."""
+        rooms = [t for t in run[:-1] if t.has("room") and not t.has("noun")]
+        if not rooms:
+            return
+        word = rooms[-1]
+        np.constraints.append(
+            RoomConstraint(
+                type=word.tags["room"], name=word.text, weight=self.weight("room"),
+                text=f"{word.text} {run[-1].text}",
+            )
+        )  # fmt: skip
 
     @staticmethod
     def _name_area(np: NP) -> None:
