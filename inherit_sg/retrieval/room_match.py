@@ -35,8 +35,11 @@ from inherit_sg.vocab.rooms import related, room_qualifier, room_type
 
 Matches = dict[str, tuple[float, str]]
 
-# A label inferred with probability p matches at LABEL_LO … 1 (fully from LABEL_SURE_P on).
+# A label inferred with probability p matches at LABEL_LO … 1: from LABEL_SURE_P on it
+# is sure, within LABEL_TIE_SPAN of 1 by p, so that of two rooms labelled alike the more
+# confidently labelled one wins a tie (the WC, not the small bathroom also read as one).
 LABEL_LO, LABEL_SURE_P = 0.8, 0.5
+LABEL_TIE_SPAN = 0.02
 # Alternatives other than the best match in [ALT_LO, ALT_HI] by their probability relative
 # to the best one's, when their probability is at least ALT_MIN_P (never above the best).
 ALT_LO, ALT_HI = 0.5, 0.95
@@ -66,11 +69,15 @@ def alternative_sim(p: float, p_best: float) -> float | None:
 
 def label_sim(p: float | None) -> float:
     """Similarity of a room to the type its label names, inferred with probability ``p``
-    (None: not inferred, as in oracle maps): 1 from ``LABEL_SURE_P`` on, down to
-    ``LABEL_LO`` for a label the map was unsure of."""
-    if p is None or p >= LABEL_SURE_P:
+    (None: not inferred, as in oracle maps): 1 - ``LABEL_TIE_SPAN`` … 1 from
+    ``LABEL_SURE_P`` on (rising with ``p``), down to ``LABEL_LO`` for a label the map was
+    unsure of."""
+    if p is None:
         return 1.0
-    return LABEL_LO + (1.0 - LABEL_LO) * max(p, 0.0) / LABEL_SURE_P
+    sure = 1.0 - LABEL_TIE_SPAN
+    if p >= LABEL_SURE_P:
+        return sure + LABEL_TIE_SPAN * (min(p, 1.0) - LABEL_SURE_P) / (1.0 - LABEL_SURE_P)
+    return LABEL_LO + (sure - LABEL_LO) * max(p, 0.0) / LABEL_SURE_P
 
 
 def room_type_sims(rid: str, snap: MapSnapshot) -> dict[str, tuple[float, str]]:
@@ -101,7 +108,7 @@ def room_type_sims(rid: str, snap: MapSnapshot) -> dict[str, tuple[float, str]]:
 def _by_type(rid: str, wanted: str, types: dict[str, tuple[float, str]]) -> tuple[float, str]:
     value, how = types[wanted]
     step = "label" if how.startswith("its label") else "alternatives"
-    verb = "is" if value >= 1.0 else "may be"
+    verb = "is" if value >= 1.0 - LABEL_TIE_SPAN else "may be"
     return value, f"room {rid} {verb} a {wanted} ({step}: {how})"
 
 

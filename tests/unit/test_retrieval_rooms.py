@@ -22,6 +22,7 @@ from inherit_sg.retrieval.room_match import (
     ALT_HI,
     ALT_LO,
     LABEL_LO,
+    LABEL_TIE_SPAN,
     QUALIFIER_MISS,
     RELATED_SCALE,
     alternative_sim,
@@ -97,11 +98,11 @@ def test_the_tv_room_finds_a_living_room_with_a_tv() -> None:
 def test_the_label_comes_first() -> None:
     snap = _snap({"a": ("living room", LIVING), "t": ("tv room", (("tv room", 0.8),))})
     found = _room(snap, "tv room", "tv room")
-    assert found["room:t"][0] == 1.0 and "label" in found["room:t"][1]
-    assert found["room:a"][0] < 1.0  # still a candidate, ranked below
+    assert found["room:t"][0] == label_sim(0.8) and "label" in found["room:t"][1]
+    assert found["room:a"][0] < found["room:t"][0]  # still a candidate, ranked below
     living = _room(snap, "living room", "living room")
     assert living["room:a"] == (
-        1.0,
+        label_sim(0.5),
         "room room:a is a living room (label: its label, inferred p=0.50)",
     )
 
@@ -110,13 +111,16 @@ def test_an_unsure_label_matches_a_little_less() -> None:
     unsure = (("living room", 0.22), ("family room", 0.13), ("entryway", 0.09))
     snap = _snap({"a": ("living room", LIVING), "u": ("living room", unsure)})
     found = _room(snap, "living room", "sitting room")
-    assert found["room:a"][0] == 1.0
-    assert LABEL_LO < found["room:u"][0] < 1.0
+    assert found["room:a"][0] == label_sim(0.5)
+    assert LABEL_LO < found["room:u"][0] < found["room:a"][0]
     assert found["room:u"][0] == pytest.approx(label_sim(0.22))
     # its alternatives never count more than its label
     family = _room(snap, "family room", "den")
     assert family["room:u"][0] <= found["room:u"][0]
-    assert label_sim(None) == 1.0 and label_sim(0.9) == 1.0
+    assert label_sim(None) == 1.0
+    # a sure label matches within LABEL_TIE_SPAN of 1, more the surer the map was
+    assert 1.0 - LABEL_TIE_SPAN <= label_sim(0.6) < label_sim(0.9) < label_sim(1.0) == 1.0
+    assert label_sim(0.49) < label_sim(0.5) == pytest.approx(1.0 - LABEL_TIE_SPAN)
 
 
 def test_the_request_words_are_read_through_aliases() -> None:
@@ -124,11 +128,11 @@ def test_the_request_words_are_read_through_aliases() -> None:
     # an LLM parser may leave the type unset and keep the words
     found = _room(snap, None, "wc")
     assert set(found) == {"room:w"}
-    assert found["room:w"][0] == 1.0 and "'wc' names a toilet" in found["room:w"][1]
+    assert found["room:w"][0] == label_sim(0.6) and "'wc' names a toilet" in found["room:w"][1]
     # a room word on the room layer (a LabelConstraint): "powder room" names a toilet
     label = LabelConstraint(id="c1", labels=("powder room",), noun="powder room")
     on_rooms = resolve_matches(label, "room", snap, hash_similarity())
-    assert on_rooms is not None and on_rooms["room:w"][0] == 1.0
+    assert on_rooms is not None and on_rooms["room:w"][0] == label_sim(0.6)
     # the bathroom is the toilet room's second type
     bath = _room(snap, "bathroom", "master bath")
     assert ALT_LO < bath["room:w"][0] < 1.0 and "alternatives" in bath["room:w"][1]
@@ -192,24 +196,27 @@ def _house_with_an_en_suite() -> MapSnapshot:
 def test_master_and_guest_bathrooms_are_told_apart_by_what_they_open_onto() -> None:
     snap = _house_with_an_en_suite()
     master = _room(snap, "bathroom", "master bathroom")
-    assert master["room:e"][0] == 1.0
-    assert master["room:g"][0] == pytest.approx(QUALIFIER_MISS)
+    sure = label_sim(0.9)
+    assert master["room:e"][0] == sure
+    assert master["room:g"][0] == pytest.approx(QUALIFIER_MISS * sure)
     assert "the private one is meant (off a bedroom)" in master["room:g"][1]
     guest = _room(snap, "bathroom", "guest bathroom")
-    assert guest["room:g"][0] == 1.0 and guest["room:e"][0] == pytest.approx(QUALIFIER_MISS)
-    assert _room(snap, "bathroom", "en suite")["room:e"][0] == 1.0
-    assert _room(snap, "bathroom", "en suite")["room:g"][0] < 1.0
+    assert guest["room:g"][0] == sure
+    assert guest["room:e"][0] == pytest.approx(QUALIFIER_MISS * sure)
+    assert _room(snap, "bathroom", "en suite")["room:e"][0] == sure
+    assert _room(snap, "bathroom", "en suite")["room:g"][0] < sure
     # no qualifier: both bathrooms match fully
     plain = _room(snap, "bathroom", "bathroom")
-    assert plain["room:e"][0] == plain["room:g"][0] == 1.0
+    assert plain["room:e"][0] == plain["room:g"][0] == sure
 
 
 def test_the_master_bedroom_is_the_one_with_its_own_bathroom() -> None:
     snap = _house_with_an_en_suite()
     master = _room(snap, "bedroom", "master bedroom")
-    assert master["room:m"][0] == 1.0 and master["room:s"][0] < 1.0
+    sure = label_sim(0.9)
+    assert master["room:m"][0] == sure and master["room:s"][0] < sure
     spare = _room(snap, "bedroom", "spare bedroom")
-    assert spare["room:s"][0] == 1.0 and spare["room:m"][0] < 1.0
+    assert spare["room:s"][0] == sure and spare["room:m"][0] < sure
 
 
 def test_room_qualifier_words() -> None:
