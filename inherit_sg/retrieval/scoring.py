@@ -438,14 +438,10 @@ class Scorer:
             return self._height(node_id)
         if con.measure in ("closest", "farthest") and landmarks:
             here = self.snap.position(node_id)
-            top = max(q for _, q in landmarks) - LANDMARK_TIER
             dists = [
                 math.dist(here, there)
-                for lid, q in landmarks
-                if q >= top
-                and lid != node_id
-                and here is not None
-                and (there := self.snap.position(lid))
+                for lid in best_landmarks(landmarks)
+                if lid != node_id and here is not None and (there := self.snap.position(lid))
             ]
             return min(dists) if dists else None
         if con.measure in ("closest", "farthest") and viewer is not None:
@@ -534,16 +530,11 @@ class Scorer:
                 and math.dist(here[:2], spot[:2]) <= VIEW_REACH
             )
         ]
-        if not near or len(near) == len(tier):
-            return tier
-        for cand in tier:
-            if cand not in near:
-                cand.terms[con.id].why = "out of the viewpoint's room: not ordered"
-        notes.append(
-            f"{con.id}: the {len(near)} of {len(tier)} candidates in the viewpoint's room "
-            "are ordered"
-        )
-        return near
+        return _compared(
+            con, tier, near, 1, notes,
+            left_out="out of the viewpoint's room: not ordered",
+            note=f"the {len(near)} of {len(tier)} candidates in the viewpoint's room are ordered",
+        )  # fmt: skip
 
     def _near_landmarks(
         self, con: Superlative, tier: list[Scored], landmarks: Landmarks, notes: list[str]
@@ -551,8 +542,7 @@ class Scorer:
         """The candidates in the room of a best-matching landmark (within
         :data:`LANDMARK_REACH` of one when the landmarks have no room); all of them when
         fewer than two are."""
-        top = max(q for _, q in landmarks) - LANDMARK_TIER
-        marks = [lid for lid, q in landmarks if q >= top]
+        marks = best_landmarks(landmarks)
         rooms = {self.snap.room_of.get(lid) for lid in marks} - {None}
         spots = [p for lid in marks if (p := self.snap.position(lid)) is not None]
 
@@ -565,15 +555,11 @@ class Scorer:
             )
 
         kept = [c for c in tier if near(c.id)]
-        if len(kept) < 2 or len(kept) == len(tier):
-            return tier
-        for cand in tier:
-            if cand not in kept:
-                cand.terms[con.id].why = "far from the landmark: not compared"
-        notes.append(
-            f"{con.id}: {len(kept)} of {len(tier)} candidates near the landmark are compared"
-        )
-        return kept
+        return _compared(
+            con, tier, kept, 2, notes,
+            left_out="far from the landmark: not compared",
+            note=f"{len(kept)} of {len(tier)} candidates near the landmark are compared",
+        )  # fmt: skip
 
     def _by_position(
         self,
@@ -613,6 +599,34 @@ class Scorer:
         for (cand, _), sim, why in zip(placed, ranked.sims, ranked.whys, strict=True):
             cand.terms[con.id].sim = sim
             cand.terms[con.id].why = why
+
+
+def best_landmarks(landmarks: Landmarks) -> list[str]:
+    """The landmark ids whose quality is within :data:`LANDMARK_TIER` of the best."""
+    top = max((q for _, q in landmarks), default=0.0) - LANDMARK_TIER
+    return [lid for lid, q in landmarks if q >= top]
+
+
+def _compared(
+    con: Superlative,
+    tier: list[Scored],
+    kept: list[Scored],
+    fewest: int,
+    notes: list[str],
+    *,
+    left_out: str,
+    note: str,
+) -> list[Scored]:
+    """``kept`` as the candidates a superlative compares, when at least ``fewest`` of
+    ``tier`` are in it and some are not (the others' terms say ``left_out``, the trace
+    ``note``); else the whole tier."""
+    if len(kept) < fewest or len(kept) == len(tier):
+        return tier
+    for cand in tier:
+        if cand not in kept:
+            cand.terms[con.id].why = left_out
+    notes.append(f"{con.id}: {note}")
+    return kept
 
 
 def landmark_quality(spec: NodeSpec, ranked: list[Scored], limit: int = 50) -> Landmarks:

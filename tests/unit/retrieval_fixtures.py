@@ -13,7 +13,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from inherit_sg.exchange.scene_truth import scene_to_graph
-from inherit_sg.model import SceneGraph
+from inherit_sg.model import (
+    BBox3D,
+    Edge,
+    EdgeKind,
+    FloorNode,
+    Layer,
+    ObjectNode,
+    RoomNode,
+    SceneGraph,
+    make_id,
+)
 from inherit_sg.retrieval.similarity import PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
 from tests.fixtures_scenes import small_scene
@@ -54,6 +64,33 @@ def small_graph() -> SceneGraph:
 def small_snapshot() -> MapSnapshot:
     """Snapshot of :func:`small_graph`."""
     return build_snapshot(small_graph(), (1,))
+
+
+def floor_snapshot(
+    objects: Sequence[tuple[str, str, float, float, str | None]],
+    rooms: dict[str, tuple[str, float]] | None = None,
+) -> MapSnapshot:
+    """A one-floor snapshot: ``rooms`` as ``key: (label, x of its centre)``, objects as
+    ``(key, label, x, y, room key or None)``, each 0.5 m wide and 1 m tall."""
+    g = SceneGraph()
+    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
+    g.add_or_update(floor)
+    for key, (label, x) in (rooms or {}).items():
+        room = RoomNode(make_id(Layer.ROOM, key), label, floor_id=floor.id, position=(x, 1, 0))
+        g.add_or_update(room)
+        g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
+    for key, label, x, y, room_key in objects:
+        g.add_or_update(
+            ObjectNode(
+                make_id(Layer.OBJECT, key),
+                label,
+                (x, y, 0.5),
+                BBox3D((x - 0.25, y - 0.25, 0.0), (x + 0.25, y + 0.25, 1.0)),
+                room_id=make_id(Layer.ROOM, room_key) if room_key else None,
+                floor_id=floor.id,
+            )
+        )
+    return build_snapshot(g, (1,))
 
 
 def hash_similarity() -> PhraseSimilarity:

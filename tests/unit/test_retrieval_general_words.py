@@ -4,7 +4,6 @@ weaker match than the word itself, graded by how far up the vocabulary it lies; 
 
 from __future__ import annotations
 
-from inherit_sg.model import BBox3D, FloorNode, Layer, ObjectNode, SceneGraph, make_id
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.constraints import LabelConstraint
 from inherit_sg.retrieval.match import (
@@ -13,27 +12,14 @@ from inherit_sg.retrieval.match import (
     HYPERNYM_STEP,
     resolve_matches,
 )
-from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
-from tests.unit.retrieval_fixtures import hash_similarity
+from inherit_sg.retrieval.snapshot import MapSnapshot
+from tests.unit.retrieval_fixtures import floor_snapshot, hash_similarity
 from tests.unit.retrieval_rank import rank
 
 
 def _snap(objects: list[tuple[str, str, float, float]]) -> MapSnapshot:
-    """One floor; objects ``(key, label, x, y)`` 0.5 m wide, 1 m tall."""
-    g = SceneGraph()
-    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
-    g.add_or_update(floor)
-    for key, label, x, y in objects:
-        g.add_or_update(
-            ObjectNode(
-                make_id(Layer.OBJECT, key),
-                label,
-                (x, y, 0.5),
-                BBox3D((x - 0.25, y - 0.25, 0.0), (x + 0.25, y + 0.25, 1.0)),
-                floor_id=floor.id,
-            )
-        )
-    return build_snapshot(g, (1,))
+    """One floor, no rooms; objects ``(key, label, x, y)``."""
+    return floor_snapshot([(key, label, x, y, None) for key, label, x, y in objects])
 
 
 def _labels(snap: MapSnapshot, word: str) -> dict[str, float]:

@@ -5,19 +5,9 @@ counter's room."""
 
 from __future__ import annotations
 
-from inherit_sg.model import (
-    BBox3D,
-    Edge,
-    EdgeKind,
-    FloorNode,
-    Layer,
-    ObjectNode,
-    RoomNode,
-    SceneGraph,
-    make_id,
-)
 from inherit_sg.retrieval import parse_rules
-from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from inherit_sg.retrieval.snapshot import MapSnapshot
+from tests.unit.retrieval_fixtures import floor_snapshot
 from tests.unit.retrieval_rank import rank
 
 # (key, label, room, x, y)
@@ -32,25 +22,9 @@ KITCHEN_AND_BATH = [
 
 
 def _snap(objects: list[tuple[str, str, str, float, float]]) -> MapSnapshot:
-    g = SceneGraph()
-    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
-    g.add_or_update(floor)
-    for key, label, x in (("k", "kitchen", 1.5), ("b", "bathroom", 7.0)):
-        room = RoomNode(make_id(Layer.ROOM, key), label, floor_id=floor.id, position=(x, 1, 0))
-        g.add_or_update(room)
-        g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
-    for key, label, room_key, x, y in objects:
-        g.add_or_update(
-            ObjectNode(
-                make_id(Layer.OBJECT, key),
-                label,
-                (x, y, 0.4),
-                BBox3D((x - 0.2, y - 0.2, 0.0), (x + 0.2, y + 0.2, 0.8)),
-                room_id=make_id(Layer.ROOM, room_key),
-                floor_id=floor.id,
-            )
-        )
-    return build_snapshot(g, (1,))
+    """A kitchen and a bathroom on one floor, with ``(key, label, room, x, y)`` objects."""
+    rooms = {"k": ("kitchen", 1.5), "b": ("bathroom", 7.0)}
+    return floor_snapshot([(k, lab, x, y, room) for k, lab, room, x, y in objects], rooms)
 
 
 def test_farthest_compares_the_landmarks_room() -> None:
