@@ -9,7 +9,7 @@ Accuracy (``--dev``): the development set judged by :mod:`inherit_sg.eval.parse`
 negations (recall, invented), crashes, each constraint kind's recall and targets per form;
 ``--misses`` lists the requests whose target or negations are wrong.
 
-Run: ``python bench/parse.py [--rounds N] [--dev] [--misses] [--out FILE]``.
+Run: ``python bench/parse.py [--rounds N] [--dev] [--misses] [--requests FILE|DIR] [--out FILE]``.
 """
 
 from __future__ import annotations
@@ -105,6 +105,12 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=3, help="timed passes over the texts")
     ap.add_argument("--dev", action="store_true", help="accuracy on the development set")
     ap.add_argument("--misses", action="store_true", help="list wrong targets and negations")
+    ap.add_argument(
+        "--requests",
+        type=Path,
+        default=DEV,
+        help="annotated requests: a .jsonl file or a folder of them (default: the dev set)",
+    )
     ap.add_argument("--out", type=Path, default=RESULTS, help=f"results JSON (default {RESULTS})")
     args = ap.parse_args()
     start = time.perf_counter()
@@ -112,7 +118,8 @@ def main() -> None:
     first_ms = (time.perf_counter() - start) * 1000.0
     results: dict[str, Any] = {}
     if args.dev or args.misses:
-        report = evaluate(load_requests(sorted(DEV.glob("*.jsonl"))), parse_uncached)
+        files = sorted(args.requests.glob("*.jsonl")) if args.requests.is_dir() else [args.requests]
+        report = evaluate(load_requests(files), parse_uncached)
         results["accuracy"] = accuracy(report)
         print_accuracy(results["accuracy"])
         if args.misses:

@@ -47,6 +47,9 @@ Matches = dict[str, tuple[float, str]]
 # Function kinds are listed most likely first; each later kind scores this much less.
 FUNCTION_RANK_STEP = 0.08
 FUNCTION_MIN = 0.6
+# A kind of a listed kind ("wall cabinet" for "cabinet") serves the function too, this
+# much below the listed kind itself.
+FUNCTION_SUBKIND = 0.05
 # Kinds a function phrase merely resembles count at most this much.
 FUNCTION_SEMANTIC_MAX = 0.5
 # Labels that only resemble the requested one count at most this much.
@@ -176,10 +179,17 @@ def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimi
     out: Matches = {}
     labels = sorted(snap.raw_labels())
     for label in labels:
-        ranks = [rank[c] for c in canonical_labels(label) if c in rank]
+        kinds = canonical_labels(label)
+        ranks = [rank[c] for c in kinds if c in rank]
         if ranks:
             value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * min(ranks))
             out[label] = (value, f"a {label} serves '{con.function}'")
+            continue
+        general = [(rank[g], g) for c in kinds for g in object_vocab.is_a(c) if g in rank]
+        if general:
+            at, kind = min(general)
+            value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * at) - FUNCTION_SUBKIND
+            out[label] = (value, f"a {label} is a {kind}, which serves '{con.function}'")
     _semantic(
         out, [con.function], labels, labels, sim, FUNCTION_SEMANTIC_MAX, TEXT_COS_LO, TEXT_COS_HI
     )

@@ -85,7 +85,9 @@ LANDMARK_TIER = 0.15
 VIEW_REACH = 2.0
 LANDMARK_REACH = 5.0
 # Superlatives measured on an object's box (compared only between well-observed boxes).
-BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest"})
+BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest", "widest", "narrowest"})
+# Measures ranked from the top down ("the largest"); the others from the bottom up.
+MAX_MEASURES = frozenset({"largest", "tallest", "highest", "widest", "farthest"})
 # Ordinals and "the middle one": the chosen candidate scores 1, the others this much
 # over (1 + their rank distance); of an even tier's two central ones, the one farther
 # from the viewer scores MIDDLE_RUNNER_UP.
@@ -368,7 +370,11 @@ class Scorer:
                 found[con.id] = directional_all(self.snap, view, ids, con.predicate, first)
             else:
                 held = self.checker.relation_all(ids, con.predicate, first)
-                near = self.checker.proximity_all([i for i in ids if i not in held], first)
+                # partial credit for being close counts only the best landmarks: near
+                # the front door, not near any door that might be it
+                top = set(best_landmarks(first))
+                marks = [(lid, q) for lid, q in first if lid in top]
+                near = self.checker.proximity_all([i for i in ids if i not in held], marks)
                 found[con.id] = {**near, **held}
         return found
 
@@ -436,6 +442,13 @@ class Scorer:
             return None
         if con.measure in ("tallest", "shortest"):
             return self._height(node_id)
+        if con.measure in ("highest", "lowest"):
+            # how high it sits above its storey's floor ("the picture hung highest")
+            here = self.snap.position(node_id)
+            base = self.snap.floor_height(node_id)
+            return here[2] - base if here is not None else None
+        if con.measure in ("widest", "narrowest"):
+            return float(max(node.bbox.size[:2])) if isinstance(node, ObjectNode) else None
         if con.measure in ("closest", "farthest") and landmarks:
             here = self.snap.position(node_id)
             dists = [
@@ -497,7 +510,7 @@ class Scorer:
         if not known:
             notes.append(f"{con.id}: cannot rank by '{con.measure}' here (no measure known)")
             return
-        want_max = con.measure in ("largest", "tallest", "farthest")
+        want_max = con.measure in MAX_MEASURES
         top = max(known.values()) if want_max else min(known.values())
         for cand in tier:
             v = known.get(cand.id)

@@ -110,6 +110,12 @@ class MapSnapshot:
         floor = self.floors.get(fid) if fid else None
         return floor.level if floor is not None else None
 
+    def floor_height(self, node_id: str) -> float:
+        """Height of the floor of the storey ``node_id`` is on (0 when unknown)."""
+        fid = self.floor_of.get(node_id)
+        floor = self.floors.get(fid) if fid else None
+        return floor.z_min if floor is not None else 0.0
+
     def node(self, node_id: str) -> ObjectNode | RoomNode | AreaNode | FloorNode | None:
         """The node with ``node_id`` among the four layers (None when absent)."""
         return (

@@ -7,6 +7,7 @@ from inherit_sg.retrieval.constraints import (
     Constraint,
     FunctionConstraint,
     LabelConstraint,
+    RelationConstraint,
     Target,
 )
 from inherit_sg.retrieval.query import ParsedQuery, number_constraints
@@ -100,8 +101,10 @@ def assemble(
     named = clause.functions + own + clause.implied
     functions = [c for c in named if isinstance(c, FunctionConstraint)]
     functions = list({f.function: f for f in reversed(functions)}.values())[::-1]
+    described = any(isinstance(c, RelationConstraint) and not c.negated for c in own)
     if not functions and not head.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
-        functions = list(_guess_function(words, notes))
+        # "the little yellow thing on the desk" is described, not asked for by purpose
+        functions = [] if described else list(_guess_function(words, notes))
     elif not functions and head.kind == OBJECT and not head.known and head.words:
         # an unknown head that is a purpose noun: "I want a long soak" seeks a bathtub
         functions = list(_guess_function(head.words[-1:], notes))

@@ -48,11 +48,24 @@ _SKIP = (
 _FRAME_SUBJECTS = frozenset({"this", "that", "it", "these", "those", "they", "there", "here"})
 # Particles and prepositions after a request verb that lead to its object ("walk over to").
 # Particles between a viewpoint verb and its landmark ("come down the stairs").
+# Framing words that point at the thing wanted ("take me to the lamp").
+_DIRECTIVES = frozenset({
+    "take me to", "take me back to", "show me", "guide me to", "lead me to", "walk me to",
+    "point me to", "point me toward", "point me towards", "navigate to", "bring me",
+    "get me", "help me find", "help me locate", "help me get to", "i need to find",
+    "i want to find", "i want to get to", "i want to go to", "go to", "head to",
+    "search for", "look for", "locate", "find me",
+})  # fmt: skip
+_ENTERING = frozenset({"in", "into", "inside", "through"})
 _PARTICLES = frozenset({
     "down", "up", "in", "into", "through", "out", "from", "of", "to", "toward", "towards",
     "at", "by", "past", "along", "across", "around", "over", "onto", "inside",
 })  # fmt: skip
 _SWITCH_VERBS = frozenset({"turn", "switch", "shut", "power", "flip", "flick"})
+# Verbs of staying somewhere, and the prepositions that then name where ("wait by the
+# front door", "stand next to the bookshelf").
+_WAIT_VERBS = frozenset({"stand", "wait", "stay", "park", "stop"})
+_BESIDE = frozenset({"next to", "by", "near", "beside", "at", "in front of", "close to"})
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
@@ -70,7 +83,19 @@ class Clause:
     exclude_previous: bool = False
     floor_np: NP | None = None
     head_negated: bool = False  # "not the sofa …": replaced by a positive phrase that follows
+    # the places the negated head was given ("not the toilet in the WC, …")
+    negated_head_places: list[Constraint] = field(default_factory=list)
     viewpoint: Viewpoint | None = None
+
+
+def _same_kind(out: Clause, np: NP) -> bool:
+    """Whether a contrasting phrase names the kind of the negated head again ("not the
+    toilet in the WC, the other toilet"), the head having details to negate."""
+    head = out.head
+    if head is None or np.kind != OBJECT or not np.labels or set(np.labels) != set(head.labels):
+        return False
+    details = [c for c in head.constraints if c.kind != "label"]
+    return bool(details or head.places or out.negated_head_places)
 
 
 def view_opener(g: Grammar) -> bool:
@@ -233,6 +258,14 @@ class ClauseParser(Grammar):
             if nxt.has("prep") and nxt.text not in ("to", "towards", "toward", "at", "over to"):
                 break
             self.advance()
+        nxt = self.peek()
+        if (
+            tok.lemma in _WAIT_VERBS
+            and nxt is not None
+            and nxt.text in _BESIDE
+            and self.np_start(1)
+        ):
+            self.advance()  # "stand next to the bookshelf": the bookshelf is where to go
 
     def _viewpoint(self, out: Clause) -> bool:
         """A clause that says where the speaker stands or looks: "if you face the
@@ -259,6 +292,12 @@ class ClauseParser(Grammar):
         elif verb_ok and cue.lemma in lx.facing_verbs:
             kind = "facing"
         elif verb_ok and cue.lemma in lx.viewpoint_verbs and cue.pos in ("VERB", "AUX"):
+            after = self.peek(k + 1)
+            before = self.peek(k - 1) if self.i + k > 0 else None
+            if (after is not None and after.pos == "VERB" and after.tag == "VB") or (
+                before is not None and before.lemma in ("go", "come") and cue.tag == "VB"
+            ):
+                return False  # "go get the basket from …": an errand, not a standpoint
             kind = "from"
         else:
             return False
@@ -280,8 +319,8 @@ class ClauseParser(Grammar):
         if lm is not None and lm.kind not in (OBJECT, ROOM):
             self.restore(snap)
             return False
-        if lm is None and kind != "from":
-            self.restore(snap)
+        if lm is None and (kind != "from" or not (opener or self._entering(cue, snap[0]))):
+            self.restore(snap)  # "where should I go?": no place to stand at
             return False
         if lm is None and opener and not cue.has("view"):
             self._skip_clause()  # "if you stand where the rug ends, …": context only
@@ -308,6 +347,18 @@ class ClauseParser(Grammar):
             self.advance()
         self.view_end = self.i
         return True
+
+    def _entering(self, cue: Tok, start: int) -> bool:
+        """Whether a viewpoint clause with no landmark says the speaker comes in ("as you
+        walk in", "when you enter", "coming through, …") or is followed by what it
+        places ("from here, …"): then its landmark is the door."""
+        moved = {t.text for t in self.toks[start : self.i]}
+        return (
+            cue.has("view")  # a viewpoint phrase of its own: "as you come in"
+            or cue.lemma == "enter"
+            or bool(moved & _ENTERING)
+            or self.at("comma")
+        )
 
     def _view_verb(self, k: int) -> bool:
         tok = self.peek(k)
@@ -401,6 +452,13 @@ class ClauseParser(Grammar):
             else:
                 out.pending.append(con)
 
+    def _negate_head_places(self, out: Clause) -> None:
+        """Negate the places the negated head was given, now that a contrasting phrase
+        keeps its kind ("not the toilet in the WC, the other one": not in the WC)."""
+        mine = {id(c) for c in out.negated_head_places}
+        out.places = [replace(c, negated=not c.negated) if id(c) in mine else c for c in out.places]
+        out.negated_head_places = []
+
     def _noun_phrase(self, out: Clause, refine: bool) -> None:
         neg = self.take_neg()
         prev = self.peek(-1) if self.i > 0 else None
@@ -412,21 +470,25 @@ class ClauseParser(Grammar):
             return
         flip = neg and np.kind == ONE  # "except the ones in the bedroom"
         if out.head_negated and not neg and out.head is not None and _contrast(prev):
-            if np.kind == OBJECT and np.labels:
+            if np.kind == OBJECT and np.labels and not _same_kind(out, np):
                 self._exclude(out, out.head)  # "not the sofa but the armchair"
                 out.head, out.head_negated = None, False
-            elif np.kind == ONE:  # "not the white cabinet, the brown one": a cabinet
+            elif np.kind == ONE or _same_kind(out, np):
+                # "not the white cabinet, the brown one", "not the toilet in the WC, the
+                # other toilet": the kind stays and the first one's details are negated
                 old = out.head
                 old.constraints = [
                     replace(c, negated=not c.negated) for c in old.constraints
                 ] + np.constraints
                 old.places += np.places
+                self._negate_head_places(out)
                 out.head_negated = False
                 self.notes.append(
                     f"'not the {old.noun}' then 'one': the kind stays, its details are negated"
                 )
                 return
-        out.places += [replace(c, negated=not c.negated) if flip else c for c in np.places]
+        own_places = [replace(c, negated=not c.negated) if flip else c for c in np.places]
+        out.places += own_places
         np.places = []
         if np.kind == FLOOR:
             if np.floor is not None:
@@ -447,8 +509,9 @@ class ClauseParser(Grammar):
             self.adopt_group(np)
             out.head = np
             out.head_negated = neg and np.kind == OBJECT and bool(np.labels)
+            out.negated_head_places = own_places if out.head_negated else []
             return
-        if self._replaces_head(out, np, neg):
+        if self._replaces_head(out, np, neg) or self._asked_for(out, np, neg, prev, start):
             return
         j = start - 1
         while j >= 0 and (self.toks[j].tag == "RP" or self.toks[j].text in _PARTICLES):
@@ -519,6 +582,29 @@ class ClauseParser(Grammar):
             )
         )  # fmt: skip
         self.notes.append(f"{np.noun!r} is the target; {head.noun!r} is where to look")
+        out.head = np
+        return True
+
+    def _asked_for(self, out: Clause, np: NP, neg: bool, prev: Tok | None, start: int) -> bool:
+        """A named object the request points at after another one was named: "I'm going
+        to read on the couch - take me to the lamp there", "… on the way out the front
+        door, which mirror should I use?". It is the target; the first one says where."""
+        head = out.head
+        if neg or head is None or head.kind != OBJECT or not head.labels or prev is None:
+            return False
+        if np.kind != OBJECT or not np.labels or set(np.labels) == set(head.labels):
+            return False
+        first = self.toks[start]
+        asks = prev.text in _DIRECTIVES or (first.has("wh") and first.text in ("which", "what"))
+        if not asks:
+            return False
+        np.constraints.append(
+            RelationConstraint(
+                predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
+                text=f"near {head.noun}",
+            )
+        )  # fmt: skip
+        self.notes.append(f"{np.noun!r} is asked for; {head.noun!r} is where to look")
         out.head = np
         return True
 

@@ -41,6 +41,7 @@ from inherit_sg.retrieval.rules.phrase import (
 )
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab import rooms as room_vocab
 from inherit_sg.vocab.lexicon import lexicon
 
 # Prepositions that put the target in a room or area ("in", "inside", "within", "at");
@@ -57,6 +58,25 @@ _PLACEMENT_PREDICATES = ("on", "next_to", "near", "inside", "with", "above", "in
 # What may follow a relative pronoun: "that is", "which isn't", "that must be red".
 _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", "away",
                   "colour", "adj", "material", "super", "with", "without")  # fmt: skip
+
+
+def _room_in_compound(head: Tok) -> tuple[str, str] | None:
+    """The room a compound the vocabulary knows names before its kind ("kitchen sink" is a
+    sink, "bathroom scale" a scale): (room type, room word). None when the kind keeps the
+    room word ("kitchen cabinet", "toilet paper": a kind of its own)."""
+    labels = head.tags.get("noun")
+    words = head.text.split()
+    if not labels or len(words) < 2:
+        return None
+    for n in range(len(words) - 1, 0, -1):
+        word = " ".join(words[:n])
+        rtype = room_vocab.room_words().get(word)  # the whole prefix names a room
+        if rtype is None:
+            continue
+        if any(word in str(label) for label in labels):
+            return None
+        return rtype, word
+    return None
 
 
 class Grammar(Cursor):
@@ -248,6 +268,7 @@ class Grammar(Cursor):
             np.labels = [_open_label(run)]
         if np.kind == OBJECT and len(run) > 1:
             self.notes.append(f"compound noun {np.noun!r} → label {'/'.join(np.labels)}")
+        if np.kind == OBJECT:
             self._room_modifier(np, run)
 
     def _room_modifier(self, np: NP, run: list[Tok]) -> None:
@@ -255,13 +276,17 @@ class Grammar(Cursor):
         "the living room lamp" (a room constraint on the phrase; compounds the object
         vocabulary knows, such as "office chair", are one token and keep their kind)."""
         rooms = [t for t in run[:-1] if t.has("room") and not t.has("noun")]
-        if not rooms:
+        if rooms:
+            word = rooms[-1]
+            rtype, name = str(word.tags["room"]), word.text
+        elif (found := _room_in_compound(run[-1])) is not None:
+            rtype, name = found  # "the kitchen sink": a sink, in the kitchen
+        else:
             return
-        word = rooms[-1]
         np.constraints.append(
             RoomConstraint(
-                type=word.tags["room"], name=word.text, weight=self.weight("room"),
-                text=f"{word.text} {run[-1].text}",
+                type=rtype, name=name, weight=self.weight("room"),
+                text=f"{name} {run[-1].text}" if rooms else run[-1].text,
             )
         )  # fmt: skip
 

@@ -290,6 +290,15 @@ def _verb_with_particle(words: list[Word], i: int) -> bool:
     return particle.text in _PARTICLES and after.pos == "DET"
 
 
+def _verb_before_place(words: list[Word], i: int) -> bool:
+    """Whether the sentence-opening word ``i`` (or one after "go" / "come"), a verb by
+    spaCy, is followed by a place ("Stand next to the bookshelf", "go sit by the window"):
+    a command, though the vocabulary knows the word as a thing (a stand, a seat)."""
+    if i + 1 >= len(words) or words[i].pos != "VERB" or words[i].tag != "VB":
+        return False
+    return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
+
+
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -298,6 +307,9 @@ def tag(words: list[Word]) -> list[Tok]:
     while i < len(words):
         n, readings, plural = _lookup(words, i)
         first = i == 0 or words[i - 1].text in (",", "please", "and", "then", "now", "just")
+        # "go stand by the door", "come sit here": the second verb is the command
+        serial = i > 0 and words[i - 1].lemma in ("go", "come") and words[i - 1].pos == "VERB"
+        first = first or (serial and words[i].tag == "VB")
         if n:
             last = words[i + n - 1]
             tok = Tok(
@@ -321,6 +333,10 @@ def tag(words: list[Word]) -> list[Tok]:
                     # "where do I go …": an auxiliary, not the function verb of "do laundry"
                     tok.tags.pop("fverb", None)
                     tok.tags.pop("overb", None)
+                if first and _verb_before_place(words, i) and tok.has("noun"):
+                    for key in ("noun", "unk", "attr"):  # "go stand next to the shelf"
+                        tok.tags.pop(key, None)
+                    tok.tags.setdefault("overb", words[i].lemma)
                 if first and _verb_with_particle(words, i):
                     # "Switch on the lamp", "Light up the hall": a command, not a noun
                     for key in ("noun", "unk", "attr"):

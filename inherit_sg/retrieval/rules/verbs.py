@@ -37,6 +37,8 @@ _VERB_CONTEXT = (
     "neg",
 )  # fmt: skip
 _VERB_FILLERS = ("want", "need", "like", "possible", "wish")
+# Prepositions inside a verb's object ("a cup of tea", "a place for my coat").
+_OBJECT_PREPOSITIONS = frozenset({"of", "for", "to", "with", "about"})
 
 
 def verb_reading(tok: Tok) -> str | None:
@@ -101,7 +103,8 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     words = [t.text for t in g.toks[start + 1 : g.i]]
     lemmas = [lemma_of(t) for t in g.toks[start + 1 : g.i]]
-    sense = match_function(verb, words, obj.words if obj is not None else None, lemmas)
+    own = _before_place(g.toks[start + 1 : g.i])
+    sense = match_function(verb, words[:own], obj.words if obj is not None else None, lemmas[:own])
     if sense is None and obj is None and g.at("wh"):
         sense, words = _wh_object(g, verb, words)
     if sense is None and tok.has("wh"):
@@ -149,6 +152,16 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places], head
+
+
+def _before_place(toks: list[Tok]) -> int:
+    """How many of a verb's object tokens come before a place or landmark phrase: "have
+    a meal | next to the seat" is about the meal, not about taking a seat ("a cup of
+    tea" keeps its "of")."""
+    for k, t in enumerate(toks):
+        if k and t.has("prep") and t.text not in _OBJECT_PREPOSITIONS:
+            return k
+    return len(toks)
 
 
 def _wh_object(g: Grammar, verb: str, words: list[str]) -> tuple[Sense | None, list[str]]:
@@ -231,9 +244,10 @@ def parse_purpose(g: Grammar) -> tuple[list[Constraint], NP | None]:
     if not g.np_start():
         return [], None
     snap = g.state()
-    g.parse_np(landmark=True)
-    words = [t.text for t in g.toks[snap[0] : g.i]]
-    sense = match_function(None, words, lemmas=[lemma_of(t) for t in g.toks[snap[0] : g.i]])
+    purpose = g.parse_np(landmark=True)
+    own = snap[0] + _before_place(g.toks[snap[0] : g.i])
+    words = [t.text for t in g.toks[snap[0] : own]]
+    sense = match_function(None, words, lemmas=[lemma_of(t) for t in g.toks[snap[0] : own]])
     if sense is None:
         g.restore(snap)  # not a purpose: the phrase is parsed as an ordinary one
         return [], None
@@ -241,4 +255,6 @@ def parse_purpose(g: Grammar) -> tuple[list[Constraint], NP | None]:
     made = FunctionConstraint(
         function=function, labels=labels, weight=g.weight("function"), text=" ".join(words)
     )
-    return [made], None
+    # "something for storage near the bed": the purpose phrase's places place the target
+    where = [c for c in purpose.constraints if c.kind == "relation"] if purpose else []
+    return [made, *where, *(purpose.places if purpose else [])], None
