@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -71,6 +72,10 @@ _AS_CLOSEST = Superlative(measure="closest")
 # A label / function similarity at least this strong means "is what was named" (exact,
 # a kind of it, a likely function kind), not merely "resembles it".
 STRONG_MATCH = 0.5
+# A label / function similarity at least this strong means the candidate surely is the
+# kind asked for; when one on the allowed floors is, things that are not the kind at all
+# (below STRONG_MATCH) rank after every candidate that is, whatever negations cost.
+SURE_KIND = 0.9
 # Candidates scoring within this of the best form the tier a superlative ranks.
 SUPERLATIVE_TIER = 0.05
 # "Closest to the front door" measures to the landmarks that match best: a landmark
@@ -161,6 +166,19 @@ def _rank_key(cand: Scored) -> tuple[float, float, str]:
         if t.polarity > 0 and t.kind in ("label", "function"):
             named += t.sim
     return (-cand.h_floor * total, -named, cand.id)
+
+
+def _kind_first(out: list[Scored]) -> Callable[[Scored], tuple[int, float, float, str]]:
+    """The sort key of a ranking: what is not the kind asked for ranks after what surely
+    is ("not the toilet in the WC, the other toilet" answers a toilet, not a stool, even
+    when every toilet is penalised), then by :func:`_rank_key`."""
+    sure = any(c.h_floor and _named_sim(c) >= SURE_KIND for c in out)
+
+    def key(cand: Scored) -> tuple[int, float, float, str]:
+        other_kind = sure and bool(cand.h_floor) and _named_sim(cand) < STRONG_MATCH
+        return (int(other_kind), *_rank_key(cand))
+
+    return key
 
 
 def _words(text: str) -> set[str]:
@@ -295,7 +313,7 @@ class Scorer:
         for sup in spec.scored():
             if isinstance(sup, Superlative):
                 self._superlative(sup, out, landmarks.get(sup.id, ()), notes, viewing)
-        out.sort(key=_rank_key)
+        out.sort(key=_kind_first(out))
         return out, notes
 
     def _leading(self, spec: NodeSpec, out: list[Scored]) -> list[str]:

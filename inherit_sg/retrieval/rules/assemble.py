@@ -3,6 +3,8 @@ numbered constraints, and the conversation reference."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from inherit_sg.retrieval.constraints import (
     Constraint,
     FunctionConstraint,
@@ -65,6 +67,29 @@ def _dedupe(constraints: list[Constraint]) -> list[Constraint]:
     return out
 
 
+# Landmarks that are surfaces of the building: what follows them places the target.
+_SURFACES = frozenset({"floor", "wall", "ceiling", "ground"})
+
+
+def _lift_surface_relations(constraints: list[Constraint]) -> list[Constraint]:
+    """ "on the floor next to the bed", "on the wall above the desk": the second phrase
+    places the target, not the floor or the wall it stands on or hangs from."""
+    out: list[Constraint] = []
+    for con in constraints:
+        out.append(con)
+        if not isinstance(con, RelationConstraint) or con.negated:
+            continue
+        labels = set(con.landmark.target.labels) or {con.landmark.target.noun}
+        if not labels or not labels <= _SURFACES:
+            continue
+        lifted = [c for c in con.landmark.constraints if isinstance(c, RelationConstraint)]
+        if lifted:
+            rest = tuple(c for c in con.landmark.constraints if c not in lifted)
+            out[-1] = replace(con, landmark=replace(con.landmark, constraints=rest))
+            out += lifted
+    return out
+
+
 def _guess_function(words: list[str], notes: list[str]) -> list[FunctionConstraint]:
     """Purpose words anywhere in the request when the grammar found neither label nor
     function ("a workspace with noise reduction" → work); weighted as a hedge."""
@@ -120,7 +145,9 @@ def assemble(
         constraints.append(LabelConstraint(labels=target.labels, noun=head.noun, text=head.noun))
     constraints += functions
     constraints += _dedupe([c for c in own if c.kind == "attribute"])
-    constraints += [c for c in own if c.kind not in ("attribute", "function")]
+    constraints += _lift_surface_relations(
+        [c for c in own if c.kind not in ("attribute", "function")]
+    )
     constraints += clause.excluded_labels
     places = sorted(clause.places + head.places, key=lambda c: _PLACE_ORDER[c.kind])
     constraints += _dedupe(places)

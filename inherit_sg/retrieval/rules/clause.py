@@ -98,6 +98,33 @@ def _same_kind(out: Clause, np: NP) -> bool:
     return bool(details or head.places or out.negated_head_places)
 
 
+def turned_round(other: NP) -> list[Constraint]:
+    """The relations of a phrase placed by "it" ("books on it", "a window above it", "a
+    stool in front of it") seen from what "it" is: it supports the books, is under the
+    window, behind the stool; the phrase, as described, is the landmark. Empty when
+    nothing in the phrase points at "it"."""
+    if other.kind != OBJECT or not other.labels:
+        return []
+    pointing = [
+        c
+        for c in other.constraints
+        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor and not c.negated
+    ]
+    described = [c for c in other.constraints if c.kind != "relation"]
+    landmark = Landmark(target=other.target(), constraints=tuple(described))
+    inverse = lexicon().with_inverse
+    out: list[Constraint] = []
+    for con in pointing:
+        predicate = inverse.get(con.predicate, con.predicate)
+        out.append(
+            RelationConstraint(
+                predicate=predicate, landmark=landmark, weight=con.weight,
+                text=f"{predicate.replace('_', ' ')} {other.noun}",
+            )
+        )  # fmt: skip
+    return out
+
+
 def view_opener(g: Grammar) -> bool:
     """Whether a viewpoint clause opens here: "if you …", "as you walk in …"."""
     tok = g.peek()
@@ -629,6 +656,10 @@ class ClauseParser(Grammar):
         assert head is not None
         if neg or np.kind != OBJECT or not np.labels:
             return False
+        if head.kind == ANAPHOR and (found := turned_round(np)):
+            head.constraints += found  # "it is red and has a pillow on it"
+            self.notes.append(f"'{np.noun} … it': a relation of the target, turned round")
+            return True
         if head.kind in (ONE, ANAPHOR, VAGUE) and not head.labels:
             np.constraints = head.constraints + np.constraints
             np.other = np.other or head.other

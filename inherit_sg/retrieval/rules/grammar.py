@@ -63,16 +63,18 @@ _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", 
 def _room_in_compound(head: Tok) -> tuple[str, str] | None:
     """The room a compound the vocabulary knows names before its kind ("kitchen sink" is a
     sink, "bathroom scale" a scale): (room type, room word). None when the kind keeps the
-    room word ("kitchen cabinet", "toilet paper": a kind of its own)."""
+    room word ("kitchen cabinet": a kind of its own) or the word is not a room's name."""
     labels = head.tags.get("noun")
     words = head.text.split()
     if not labels or len(words) < 2:
         return None
     for n in range(len(words) - 1, 0, -1):
         word = " ".join(words[:n])
-        rtype = room_vocab.room_words().get(word)  # the whole prefix names a room
-        if rtype is None:
+        # the prefix is a room type's own name, and no kind of thing: "kitchen sink",
+        # "garage door"; not "laundry basket" (an alias), "bar stool" (a bar is a thing)
+        if room_vocab.room_words().get(word) != word or object_vocab.canonical_label(word):
             continue
+        rtype = word
         if any(word in str(label) for label in labels):
             return None
         return rtype, word
@@ -689,7 +691,13 @@ class Grammar(Cursor):
                 place = AreaConstraint(
                     label=lm.noun, negated=neg, text=text, weight=weighted("area", stress)
                 )
-            return [place, *lm.constraints, *places]
+            # the room's size words describe the room ("in the little WC"), not the target
+            kept = [
+                c
+                for c in lm.constraints
+                if not (isinstance(c, AttributeConstraint) and c.key == "size")
+            ]
+            return [place, *kept, *places]
         if lm.kind in (GENERIC_AREA, VAGUE) and predicate in _PLACE_PREDICATES:
             self.notes.append(f"place {text!r} describes the target, not a named area")
             return [*lm.constraints, *places]

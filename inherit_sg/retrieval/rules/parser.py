@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
-from inherit_sg.retrieval.rules.clause import Clause, ClauseParser
+from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, turned_round
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, OBJECT, ONE, VAGUE
 from inherit_sg.retrieval.rules.problems import split_problem
@@ -119,7 +119,20 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
         out.head = other
         out.places += more.places
         return
+    if _about_target(head, other, notes):
+        return
     notes.append(f"sentence about {other.noun or other.kind!r} (not the target) ignored")
+
+
+def _about_target(head: NP, other: NP, notes: list[str]) -> bool:
+    """A later sentence about another thing placed by "it" ("There are books on it"):
+    the relation, turned round, describes the target."""
+    found = turned_round(other)
+    if not found:
+        return False
+    head.constraints += found
+    notes.append(f"'{other.noun} … it': a relation of the target, turned round")
+    return True
 
 
 def parse_uncached(text: str) -> ParsedQuery:
