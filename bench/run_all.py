@@ -5,7 +5,7 @@ The set: generated two-floor houses at the generator's default 640×480 (seeds 8
 perception), the Matterport3D house of
 ``../shared/data/real/mp3d/`` rendered with ``inherit-sg sim render-house`` (skipped
 when absent); then the request sets measured by their own scripts: the parser on the
-development set (``bench/parse.py``) and human-written requests on the MP3D house
+development set (``bench/parse.py``) and two human-written request sets on the MP3D house
 (``bench/mp3d_requests.py``); last, the earlier generator's houses (``--style classic``,
 seeds 201 and 202) so that the page shows past figures beside the new ones
 (``--only NAME[,NAME]`` runs a part of the set). Each dataset is mapped from its frames by the benchmark itself, so the
@@ -34,6 +34,8 @@ RESULTS = ROOT / "bench" / "results" / "run_all"
 SCALE_JSON = ROOT / "bench" / "results" / "retrieval.json"
 PARSE_JSON = ROOT / "bench" / "results" / "parse.json"
 MP3D_REQUESTS_JSON = ROOT / "bench" / "results" / "mp3d_requests.json"
+MP3D_INDEPENDENT = ROOT / "bench" / "data" / "mp3d_requests_independent.jsonl"
+MP3D_INDEPENDENT_JSON = ROOT / "bench" / "results" / "mp3d_requests_independent.json"
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
 DOCS = ROOT / "docs"
@@ -163,6 +165,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
         for name, path in (
             ("parse", PARSE_JSON),
             ("mp3d", MP3D_REQUESTS_JSON),
+            ("mp3d_independent", MP3D_INDEPENDENT_JSON),
             ("mp3d_rooms", MP3D_ROOMS_JSON),
             ("mp3d_objects", MP3D_OBJECTS_JSON),
         )
@@ -174,7 +177,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
 
 
 def run_request_sets(work: Path) -> None:
-    """The parser's development set and the MP3D human-written requests (each script
+    """The parser's development set and the two MP3D human-written request sets (each script
     writes its JSON under bench/results/)."""
     print("== request parsing (bench/parse.py --dev)", flush=True)
     subprocess.run([sys.executable, str(ROOT / "bench" / "parse.py"), "--dev"], check=True)
@@ -184,6 +187,14 @@ def run_request_sets(work: Path) -> None:
         subprocess.run(
             [sys.executable, str(script), "--work", str(work / "mp3d-requests")], check=True
         )
+        print("== MP3D independent requests (bench/mp3d_requests.py --requests …)", flush=True)
+        subprocess.run(
+            [
+                sys.executable, str(script), "--work", str(work / "mp3d-requests"),
+                "--requests", str(MP3D_INDEPENDENT), "--out", str(MP3D_INDEPENDENT_JSON),
+            ],
+            check=True,
+        )  # fmt: skip
 
 
 def main() -> None:

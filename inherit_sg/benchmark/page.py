@@ -40,7 +40,8 @@ def render_page(
 ) -> str:
     """Markdown of the benchmark page; ``images`` maps figure names ("accuracy",
     "latency_scale", "storage") to paths relative to the page; ``request_sets`` holds the
-    results of ``bench/parse.py`` ("parse") and ``bench/mp3d_requests.py`` ("mp3d")."""
+    results of ``bench/parse.py`` ("parse") and ``bench/mp3d_requests.py`` ("mp3d", and
+    "mp3d_independent" for the second set)."""
     parts = ["# Benchmarks", preamble.strip()]
     parts += ["## Datasets", datasets_section(docs)]
     parts += [
@@ -109,6 +110,17 @@ def render_page(
             "mp3d_requests.jsonl`), answered on the map built from its rendered walk; from "
             "`bench/results/mp3d_requests.json` (`python bench/mp3d_requests.py`).",
             request_sets_section.requests_section(sets["mp3d"]),
+        ]
+    if "mp3d_independent" in sets:
+        parts += [
+            "## Independent requests on the Matterport3D house",
+            "120 further requests for the same house, written by a second author from its "
+            "ground truth alone, without the parser's code or the first set "
+            "(`bench/data/mp3d_requests_independent.jsonl`); the same map; from "
+            "`bench/results/mp3d_requests_independent.json` (`python "
+            "bench/mp3d_requests.py --requests bench/data/mp3d_requests_independent.jsonl "
+            "--out bench/results/mp3d_requests_independent.json`).",
+            request_sets_section.requests_section(sets["mp3d_independent"]),
         ]
     if "mp3d_rooms" in sets:
         parts += [
