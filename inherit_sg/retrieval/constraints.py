@@ -246,12 +246,14 @@ class RoomConstraint(_Constraint):
     """In a room of canonical ``type`` ("kitchen"; None when the word is unknown).
 
     ``name`` holds the words used ("cafe lounge"), for text matching against room and
-    area labels.
+    area labels. ``beside`` names what the room lies next to, a room type or a thing
+    ("the bathroom off the entry hall": "entryway"; "… by the front door": "front door").
     """
 
     kind: ClassVar[str] = "room"
     type: str | None = None
     name: str = ""
+    beside: str = ""
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -31,6 +31,7 @@ import numpy as np
 
 from inherit_sg.retrieval.similarity import LABEL_COS_HI, LABEL_COS_LO, PhraseSimilarity, graded
 from inherit_sg.retrieval.snapshot import MapSnapshot
+from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab.rooms import related, room_qualifier, room_type
 
 Matches = dict[str, tuple[float, str]]
@@ -185,6 +186,7 @@ def match_rooms(
     sim: PhraseSimilarity,
     *,
     negated: bool = False,
+    beside: str = "",
 ) -> Matches:
     """Room id → (similarity, reason) for a request naming room type ``rtype`` (None when
     its words name no type) with ``words``; see the module docstring for the steps.
@@ -204,7 +206,41 @@ def match_rooms(
     qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
     if qualifier is not None and rtype is not None:
         qualify_rooms(out, qualifier, rtype, snap)
+    if beside:
+        rooms_beside(out, beside, snap)
     return out
+
+
+def _anchor_rooms(beside: str, snap: MapSnapshot) -> set[str]:
+    """The rooms a "next to" phrase names: rooms of that type, else the rooms holding
+    the thing it names (the best-matching kind only: the exterior door for "front
+    door")."""
+    rtype = room_type(beside)
+    if rtype is not None:
+        return {r for r, t in snap.room_types.items() if t == rtype}
+    kinds = set(object_vocab.labels_for(beside))
+    if not kinds:
+        return set()
+    return {
+        room
+        for oid, canon in snap.canon.items()
+        if kinds & set(canon) and (room := snap.room_of.get(oid)) is not None
+    }
+
+
+def rooms_beside(out: Matches, beside: str, snap: MapSnapshot) -> None:
+    """Lower the matched rooms that neither hold nor open onto what ``beside`` names to
+    :data:`QUALIFIER_MISS` of their similarity, in place; nothing changes unless the
+    matched rooms include both kinds."""
+    anchors = _anchor_rooms(beside, snap)
+    matched = sorted(r for r in out if r in snap.rooms)
+    meant = {r for r in matched if r in anchors or snap.neighbours.get(r, set()) & anchors}
+    if not meant or len(meant) == len(matched):
+        return
+    for rid in matched:
+        if rid not in meant:
+            value, why = out[rid]
+            out[rid] = (value * QUALIFIER_MISS, f"{why}; but the one by the {beside} is meant")
 
 
 def _opens_onto(rid: str, types: frozenset[str], snap: MapSnapshot) -> bool:

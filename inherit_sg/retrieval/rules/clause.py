@@ -718,6 +718,6 @@ class ClauseParser(Grammar):
         if np.kind == ROOM:
             return RoomConstraint(
                 type=np.room_type, name=np.noun, negated=neg, weight=self.weight("room"),
-                text=np.noun,
+                text=np.noun, beside=np.beside,
             )  # fmt: skip
         return AreaConstraint(label=np.noun, negated=neg, weight=self.weight("area"), text=np.noun)

@@ -60,6 +60,14 @@ _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", 
                   "colour", "adj", "material", "super", "with", "without")  # fmt: skip
 
 
+# Prepositions that place a room next to another room or a thing ("the bathroom off the
+# entry hall", "the bedroom next to the kitchen", "the bathroom by the front door").
+_BESIDE_ROOM = frozenset({
+    "off", "off of", "next to", "by", "near", "beside", "close to", "adjacent to",
+    "across from", "opposite",
+})  # fmt: skip
+
+
 def _room_in_compound(head: Tok) -> tuple[str, str] | None:
     """The room a compound the vocabulary knows names before its kind ("kitchen sink" is a
     sink, "bathroom scale" a scale): (room type, room word). None when the kind keeps the
@@ -389,6 +397,20 @@ class Grammar(Cursor):
                 continue
             self.advance()
 
+    @staticmethod
+    def _beside(np: NP, made: list[Constraint]) -> bool:
+        """A room phrase's neighbour: the room or thing of a "next to" phrase after it."""
+        if len(made) != 1 or made[0].negated:
+            return False
+        con = made[0]
+        if isinstance(con, RoomConstraint):
+            np.beside = con.type or con.name
+        elif isinstance(con, RelationConstraint) and con.landmark.target.labels:
+            np.beside = con.landmark.target.noun or con.landmark.target.labels[0]
+        else:
+            return False
+        return True
+
     def _postmodifier(self, np: NP, tok: Tok, landmark: bool, after_be: bool) -> bool:
         """Parse one post-modifier starting at ``tok``; False when there is none."""
         if tok.has("prep", "away") and self.with_depth and self.at("anaphor", k=1):
@@ -414,6 +436,8 @@ class Grammar(Cursor):
                 self.restore(snap)
                 return False
             places = [c for c in made if c.kind in ("room", "area", "floor")]
+            if landmark and np.kind == ROOM and tok.text in _BESIDE_ROOM and self._beside(np, made):
+                return True  # "the bathroom off the entry hall", "… by the front door"
             if places and landmark:
                 self.restore(snap)
                 return False
@@ -848,8 +872,9 @@ class Grammar(Cursor):
     @staticmethod
     def _room(np: NP, neg: bool, text: str, stress: str | None) -> RoomConstraint:
         return RoomConstraint(
-            type=np.room_type, name=np.noun, negated=neg, text=text, weight=weighted("room", stress)
-        )
+            type=np.room_type, name=np.noun, negated=neg, text=text,
+            weight=weighted("room", stress), beside=np.beside,
+        )  # fmt: skip
 
     def _floor(self, value: int | str, neg: bool = False) -> FloorConstraint:
         if isinstance(value, int):

@@ -33,6 +33,7 @@ class NP:
     quantity: int | None = None
     other: bool = False
     room_type: str | None = None
+    beside: str = ""  # a room's neighbour: "the bathroom off the hall" (room phrases only)
     floor: int | str | None = None
     superlative: str | None = None
     ordinal: int | None = None
