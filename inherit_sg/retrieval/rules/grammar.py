@@ -335,16 +335,20 @@ class Grammar(Cursor):
             np.ordinal = 1  # "the one on the left": the first from the left
         if np.ordinal is not None:
             side = f" from the {np.direction}" if np.direction else ""
+            mark = np.counted_from
+            if mark is not None:
+                side = f" from the {mark.target.noun}"
             np.constraints.append(
                 Superlative(
                     measure="ordinal",
                     ordinal=np.ordinal,
                     direction=np.direction,
+                    landmark=mark if np.direction is None else None,
                     weight=self.weight("superlative"),
                     text=f"ordinal {np.ordinal}{side}",
                 )
             )
-            np.ordinal = None
+            np.ordinal, np.counted_from = None, None
         if np.superlative is not None:
             np.constraints.append(
                 Superlative(
@@ -418,6 +422,8 @@ class Grammar(Cursor):
         if after_be and tok.text in ("on", "off") and self._state_word(np, tok):
             return True  # "the lamp that's not on"
         if tok.has("prep", "away", "from") and self._direction(np):
+            return True
+        if tok.text == "from" and self._counted_from(np):
             return True
         if tok.has("placement"):
             self.advance()
@@ -614,6 +620,20 @@ class Grammar(Cursor):
         np.constraints += sub.constraints
         np.places += sub.places
         self.notes.append(f"'of {sub.noun}' names what the request picks from")
+
+    def _counted_from(self, np: NP) -> bool:
+        """ "the second chair from the window", "the third one from the door": an ordinal
+        counted by distance from a landmark."""
+        if np.ordinal is None or np.direction is not None or not self.np_start(1):
+            return False
+        snap = self.state()
+        self.advance()
+        mark = self.parse_np(landmark=True)
+        if mark is None or mark.kind != OBJECT or not mark.labels:
+            self.restore(snap)
+            return False
+        np.counted_from = mark.landmark()
+        return True
 
     def _direction(self, np: NP) -> bool:
         """ "from the left", "on your right", "to the right side", "in front", "at the

@@ -37,6 +37,7 @@ class NP:
     floor: int | str | None = None
     superlative: str | None = None
     ordinal: int | None = None
+    counted_from: Landmark | None = None  # "the second chair from the window"
     direction: str | None = None
     known: bool = False  # the head noun is in the lexicon
     excluded: bool = False  # the object of "I don't want …": a kind ruled out

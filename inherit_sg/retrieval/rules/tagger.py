@@ -329,6 +329,11 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.plural = _ONE_WORDS[words[i].text]
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
+                if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
+                    # "a set of two curtains": a noun after its determiner, not "set" = placed
+                    for key in ("be", "fverb", "overb"):
+                        tok.tags.pop(key, None)
+                    tok.tags["unk"] = words[i].text
                 if words[i].pos == "AUX" and tok.has("modal"):
                     # "where do I go …": an auxiliary, not the function verb of "do laundry"
                     tok.tags.pop("fverb", None)
