@@ -25,9 +25,12 @@ CLUSTER_GAP = 0.8
 
 
 def cluster_objects(
-    objects: Sequence[ObjectNode], gap: float = CLUSTER_GAP
+    objects: Sequence[ObjectNode],
+    gap: float = CLUSTER_GAP,
+    compatible: np.ndarray | None = None,
 ) -> list[list[ObjectNode]]:
-    """Group objects whose footprints come within ``gap`` metres (transitively)."""
+    """Group objects whose footprints come within ``gap`` metres (transitively); with
+    ``compatible`` (an n × n boolean matrix), only compatible pairs link."""
     n = len(objects)
     if n == 0:
         return []
@@ -36,6 +39,8 @@ def cluster_objects(
     dx = np.maximum(0, np.maximum(lo[:, None, 0] - hi[None, :, 0], lo[None, :, 0] - hi[:, None, 0]))
     dy = np.maximum(0, np.maximum(lo[:, None, 1] - hi[None, :, 1], lo[None, :, 1] - hi[:, None, 1]))
     linked = np.hypot(dx, dy) <= gap
+    if compatible is not None:
+        linked &= compatible
     _, labels = connected_components(csr_matrix(linked), directed=False)
     groups: dict[int, list[ObjectNode]] = {}
     for obj, lab in zip(objects, labels, strict=True):

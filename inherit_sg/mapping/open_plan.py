@@ -172,11 +172,28 @@ def _agree(a: _Group, b: _Group, params: SplitParams) -> bool:
     return min(a.evidence[both] / ea, b.evidence[both] / eb) >= params.keep_share
 
 
+def _share_a_type(objects: Sequence[ObjectNode]) -> np.ndarray:
+    """Which objects may link in a group: those that both support some room type (a
+    sofa and a lamp, a stove and a sink), so that a sofa touching a kitchen run, or
+    a stray detection between them, does not chain the two into one."""
+    names = sorted({t for o in objects for t in type_evidence([o.label])})
+    support = np.array(
+        [[type_evidence([o.label]).get(t, 0.0) > 0 for t in names] for o in objects], dtype=bool
+    ).reshape(len(objects), len(names))
+    shared: np.ndarray = (support.astype(int) @ support.T.astype(int)) > 0
+    return shared
+
+
 def group_objects(objects: Sequence[ObjectNode], params: SplitParams) -> list[list[ObjectNode]]:
     """The groups of informative objects that stand as separate functional rooms (each
     with enough evidence, every two told apart); fewer than two when the room is one."""
     informative = [o for o in objects if any(v > 0 for v in type_evidence([o.label]).values())]
-    groups = [_Group(c) for c in cluster_objects(informative, gap=params.cluster_gap)]
+    groups = [
+        _Group(c)
+        for c in cluster_objects(
+            informative, gap=params.cluster_gap, compatible=_share_a_type(informative)
+        )
+    ]
     # the gap between two groups when they agree, else None; by the groups' object ids
     known: dict[tuple[frozenset[str], frozenset[str]], float | None] = {}
 

@@ -250,3 +250,13 @@ def test_type_evidence_ignores_fixtures() -> None:
     evidence = type_evidence(kitchen + fixtures)
     assert max(evidence, key=lambda t: evidence[t]) == "kitchen"
     assert evidence == type_evidence(kitchen)
+
+
+def test_touching_groups_of_different_rooms_still_split() -> None:
+    # the sofa group runs up against the kitchen run: footprints touch, yet a stove and
+    # a sofa say nothing in common, so they do not chain into one group
+    kitchen = row(strongest("kitchen", 4), 0.6, 0.5, 1, step=0.6)
+    living = row(strongest("living room", 3), 3.0, 0.5, 10, step=0.6)
+    split = split_room(rect_mask(12.0, 4.0), kitchen + living)
+    assert split is not None
+    assert [p.room_type for p in split.parts] == ["kitchen", "living room"]
