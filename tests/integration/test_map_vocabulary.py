@@ -106,7 +106,9 @@ def test_info_shows_vocabulary_and_label_space(built: Path, tmp_path: Path) -> N
     shown = runner.invoke(app, ["info", "--map", str(built)])
     assert shown.exit_code == 0, shown.output
     digest = _card(built)["vocabulary"]["digest"]
-    assert f"vocabulary: {digest} (lexicon v1, " in shown.output and "rooms v5" in shown.output
+    versions = _card(built)["vocabulary"]["versions"]
+    assert f"vocabulary: {digest} (lexicon v{versions['lexicon']}, " in shown.output
+    assert f"rooms v{versions['rooms']}" in shown.output
     assert "label space: " in shown.output and "labels:" in shown.output
     as_json = json.loads(runner.invoke(app, ["info", "--map", str(built), "--json"]).output)
     assert as_json["label_space"] == _card(built)["label_space"]

@@ -692,6 +692,20 @@ class Grammar(Cursor):
                 self.restore(snap)  # "of the room" says nothing more: consumed
 
     # ---------------------------------------------------------- prepositions
+    def _side_of(self, lm: NP) -> NP:
+        """ "on the back of the chair", "on the side of the fridge": a side of a thing
+        names no landmark of its own; the thing after "of" is the landmark."""
+        k = 1 if self.at("dir", "side") else 0  # "the back" leaves "back" unread
+        if lm.kind != ONE or lm.labels or not self.at("of", k=k) or not self.np_start(k + 1):
+            return lm
+        snap = self.state()
+        self.i += k + 1
+        thing = self.parse_np(landmark=True)
+        if thing is None or thing.kind != OBJECT or not thing.labels:
+            self.restore(snap)
+            return lm
+        return thing
+
     def parse_pp(self, predicate: str | None = None) -> list[Constraint] | None:
         """A prepositional phrase → constraints (empty for deictic places); None when
         the preposition has no object. ``predicate`` overrides the preposition's own."""
@@ -714,6 +728,7 @@ class Grammar(Cursor):
             self.place_object = False
         if lm is None:
             return None
+        lm = self._side_of(lm)
         text = f"{tok.text} {lm.noun or lm.kind}"
         places = lm.places
         if lm.kind == FLOOR and lm.floor is not None:
@@ -735,11 +750,13 @@ class Grammar(Cursor):
                 place = AreaConstraint(
                     label=lm.noun, negated=neg, text=text, weight=weighted("area", stress)
                 )
-            # the room's size words describe the room ("in the little WC"), not the target
+            # the room's size words and ordinals pick the room ("in the little WC", "in
+            # the second bathroom"), they do not describe the target
             kept = [
                 c
                 for c in lm.constraints
                 if not (isinstance(c, AttributeConstraint) and c.key == "size")
+                and not isinstance(c, Superlative)
             ]
             return [place, *kept, *places]
         if lm.kind in (GENERIC_AREA, VAGUE) and predicate in _PLACE_PREDICATES:
