@@ -235,12 +235,18 @@ def rooms_beside(out: Matches, beside: str, snap: MapSnapshot) -> None:
     anchors = _anchor_rooms(beside, snap)
     matched = sorted(r for r in out if r in snap.rooms)
     meant = {r for r in matched if r in anchors or snap.neighbours.get(r, set()) & anchors}
+    _lower_unmeant(out, matched, meant, f"the one by the {beside} is meant")
+
+
+def _lower_unmeant(out: Matches, matched: list[str], meant: set[str], reason: str) -> None:
+    """Lower the ``matched`` rooms not in ``meant`` to :data:`QUALIFIER_MISS` of their
+    similarity, saying ``reason``; nothing changes unless ``matched`` holds both kinds."""
     if not meant or len(meant) == len(matched):
         return
     for rid in matched:
         if rid not in meant:
             value, why = out[rid]
-            out[rid] = (value * QUALIFIER_MISS, f"{why}; but the one by the {beside} is meant")
+            out[rid] = (value * QUALIFIER_MISS, f"{why}; but {reason}")
 
 
 def _opens_onto(rid: str, types: frozenset[str], snap: MapSnapshot) -> bool:
@@ -266,15 +272,10 @@ def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -
     matched = sorted(r for r in out if r in snap.rooms)
     private = _private_rooms(matched, rtype, snap)
     meant = private if qualifier == "private" else set(matched) - private
-    if not meant or len(meant) == len(matched):
-        return
     what = {
         ("private", True): "with a bathroom of its own, or the largest",
         ("private", False): "off a bedroom",
         ("shared", True): "not the main bedroom",
         ("shared", False): "not off a bedroom",
     }[(qualifier, rtype in BEDROOMS)]
-    for rid in matched:
-        if rid not in meant:
-            value, why = out[rid]
-            out[rid] = (value * QUALIFIER_MISS, f"{why}; but the {qualifier} one is meant ({what})")
+    _lower_unmeant(out, matched, meant, f"the {qualifier} one is meant ({what})")

@@ -69,9 +69,11 @@ def small_snapshot() -> MapSnapshot:
 def floor_snapshot(
     objects: Sequence[tuple[str, str, float, float, str | None]],
     rooms: dict[str, tuple[str, float]] | None = None,
+    doors: Sequence[tuple[str, str]] = (),
 ) -> MapSnapshot:
     """A one-floor snapshot: ``rooms`` as ``key: (label, x of its centre)``, objects as
-    ``(key, label, x, y, room key or None)``, each 0.5 m wide and 1 m tall."""
+    ``(key, label, x, y, room key or None)``, each 0.5 m wide and 1 m tall; ``doors``
+    are the pairs of room keys that open onto each other."""
     g = SceneGraph()
     floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
     g.add_or_update(floor)
@@ -79,6 +81,8 @@ def floor_snapshot(
         room = RoomNode(make_id(Layer.ROOM, key), label, floor_id=floor.id, position=(x, 1, 0))
         g.add_or_update(room)
         g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
+    for a, b in doors:
+        g.add_edge(Edge.make(EdgeKind.CONNECTS, make_id(Layer.ROOM, a), make_id(Layer.ROOM, b)))
     for key, label, x, y, room_key in objects:
         g.add_or_update(
             ObjectNode(

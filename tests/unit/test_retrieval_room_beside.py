@@ -3,62 +3,31 @@ entry hall", "the bathroom by the front door", "the bedroom next to the kitchen"
 
 from __future__ import annotations
 
-from inherit_sg.model import (
-    BBox3D,
-    Edge,
-    EdgeKind,
-    FloorNode,
-    Layer,
-    ObjectNode,
-    RoomNode,
-    SceneGraph,
-    make_id,
-)
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.constraints import RoomConstraint
-from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
+from inherit_sg.retrieval.snapshot import MapSnapshot
+from tests.unit.retrieval_fixtures import floor_snapshot
 from tests.unit.retrieval_rank import rank
 
-# room key → (label, x of its centre, rooms it opens onto)
+# room key → (label, x of its centre)
 ROOMS = {
-    "hall": ("entryway", 0.0, ("bath_a", "bed")),
-    "bath_a": ("bathroom", 3.0, ()),
-    "bed": ("bedroom", -4.0, ("bath_b",)),
-    "bath_b": ("bathroom", -8.0, ()),
+    "hall": ("entryway", 0.0),
+    "bath_a": ("bathroom", 3.0),
+    "bed": ("bedroom", -4.0),
+    "bath_b": ("bathroom", -8.0),
 }
-# (key, label, x, room key)
+# the rooms that open onto each other
+DOORS = [("hall", "bath_a"), ("hall", "bed"), ("bed", "bath_b")]
+# (key, label, x, y, room key)
 OBJECTS = [
-    ("front", "exterior door", 0.0, "hall"),
-    ("towel_a", "towel", 3.5, "bath_a"),
-    ("towel_b", "towel", -8.5, "bath_b"),
+    ("front", "exterior door", 0.0, 0.0, "hall"),
+    ("towel_a", "towel", 3.5, 0.0, "bath_a"),
+    ("towel_b", "towel", -8.5, 0.0, "bath_b"),
 ]
 
 
 def _snap() -> MapSnapshot:
-    g = SceneGraph()
-    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
-    g.add_or_update(floor)
-    for key, (label, x, _) in ROOMS.items():
-        room = RoomNode(make_id(Layer.ROOM, key), label, floor_id=floor.id, position=(x, 0, 0))
-        g.add_or_update(room)
-        g.add_edge(Edge.make(EdgeKind.HAS_ROOM, floor.id, room.id))
-    for key, (_, _, doors) in ROOMS.items():
-        for other in doors:
-            g.add_edge(
-                Edge.make(EdgeKind.CONNECTS, make_id(Layer.ROOM, key), make_id(Layer.ROOM, other))
-            )
-    for key, label, x, room_key in OBJECTS:
-        g.add_or_update(
-            ObjectNode(
-                make_id(Layer.OBJECT, key),
-                label,
-                (x, 0.0, 0.5),
-                BBox3D((x - 0.25, -0.25, 0.0), (x + 0.25, 0.25, 1.0)),
-                room_id=make_id(Layer.ROOM, room_key),
-                floor_id=floor.id,
-            )
-        )
-    return build_snapshot(g, (1,))
+    return floor_snapshot(OBJECTS, ROOMS, DOORS)
 
 
 def test_the_parser_keeps_what_a_room_lies_next_to() -> None:

@@ -80,7 +80,7 @@ def _lift_surface_relations(constraints: list[Constraint]) -> list[Constraint]:
         if not isinstance(con, RelationConstraint) or con.negated:
             continue
         labels = set(con.landmark.target.labels) or {con.landmark.target.noun}
-        if not labels or not labels <= _SURFACES:
+        if not labels <= _SURFACES:
             continue
         lifted = [c for c in con.landmark.constraints if isinstance(c, RelationConstraint)]
         if lifted:

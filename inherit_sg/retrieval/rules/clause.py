@@ -602,15 +602,21 @@ class ClauseParser(Grammar):
             return False
         if not (verb.has("seek", "overb", "fverb") or verb.tag == "VB"):
             return False
+        self._sought_near_head(out, np, "is the target")
+        return True
+
+    def _sought_near_head(self, out: Clause, np: NP, how: str) -> None:
+        """``np`` becomes the target, found near the head named before it."""
+        head = out.head
+        assert head is not None
         np.constraints.append(
             RelationConstraint(
                 predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
                 text=f"near {head.noun}",
             )
         )  # fmt: skip
-        self.notes.append(f"{np.noun!r} is the target; {head.noun!r} is where to look")
+        self.notes.append(f"{np.noun!r} {how}; {head.noun!r} is where to look")
         out.head = np
-        return True
 
     def _asked_for(self, out: Clause, np: NP, neg: bool, prev: Tok | None, start: int) -> bool:
         """A named object the request points at after another one was named: "I'm going
@@ -625,14 +631,7 @@ class ClauseParser(Grammar):
         asks = prev.text in _DIRECTIVES or (first.has("wh") and first.text in ("which", "what"))
         if not asks:
             return False
-        np.constraints.append(
-            RelationConstraint(
-                predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
-                text=f"near {head.noun}",
-            )
-        )  # fmt: skip
-        self.notes.append(f"{np.noun!r} is asked for; {head.noun!r} is where to look")
-        out.head = np
+        self._sought_near_head(out, np, "is asked for")
         return True
 
     def _stray_object(self, out: Clause, np: NP, prev: object) -> bool:
