@@ -248,12 +248,15 @@ class RoomConstraint(_Constraint):
     ``name`` holds the words used ("cafe lounge"), for text matching against room and
     area labels. ``beside`` names what the room lies next to, a room type or a thing
     ("the bathroom off the entry hall": "entryway"; "… by the front door": "front door").
+    ``opening``: what is sought leads into the room ("the door to the toilet"), so the
+    rooms that open onto a room of the type match as well as the room itself.
     """
 
     kind: ClassVar[str] = "room"
     type: str | None = None
     name: str = ""
     beside: str = ""
+    opening: bool = False
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -203,9 +203,10 @@ def _rooms(
     sim: PhraseSimilarity,
     negated: bool = False,
     beside: str = "",
+    opening: bool = False,
 ) -> Matches:
     """Rooms by label, inferred alternatives, aliases, then embeddings (room_match)."""
-    return match_rooms(words, rtype, snap, sim, negated=negated, beside=beside)
+    return match_rooms(words, rtype, snap, sim, negated=negated, beside=beside, opening=opening)
 
 
 def _areas(words: list[str], snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
@@ -237,7 +238,7 @@ def resolve_matches(
         return _function_labels(con, snap, sim) if layer == "object" else None
     if isinstance(con, RoomConstraint):
         words = [_clean(w) for w in (con.type or "", con.name) if w]
-        return _rooms(words, con.type, snap, sim, con.negated, con.beside)
+        return _rooms(words, con.type, snap, sim, con.negated, con.beside, con.opening)
     if isinstance(con, AreaConstraint):
         return _areas([con.label], snap, sim)
     return None

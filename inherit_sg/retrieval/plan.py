@@ -42,8 +42,9 @@ from inherit_sg.retrieval.directions import VIEW_PREDICATES
 from inherit_sg.retrieval.match import Matches, resolve_matches
 from inherit_sg.retrieval.query import ParsedQuery, describe, number_constraints
 from inherit_sg.retrieval.similarity import PhraseSimilarity
-from inherit_sg.retrieval.snapshot import MapSnapshot
-from inherit_sg.vocab.functions import kinds_serving
+from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab.functions import kinds_serving, usual_room
 
 _LIVE = "coalesce(o.status, 'active') <> 'removed'"
 CYPHER_OBJECTS_BY_LABEL = f"MATCH (o:Object) WHERE o.label IN $labels AND {_LIVE} RETURN o.id"
@@ -232,6 +233,71 @@ def implied_constraints(
     return tuple(out)
 
 
+# Kinds a compound's first word may name without placing the thing by one ("floor lamp",
+# "wall clock", "ceiling fan": every room has them).
+_EVERYWHERE = frozenset({"wall", "floor", "ceiling", "room", "house"})
+# Weight of the nearness a compound implies ("bar stool": a stool by a bar).
+COMPOUND_NEAR_WEIGHT = 0.4
+
+
+def compound_nearness(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[Constraint, ...]:
+    """A kind asked for by a compound the map does not use ("bar stool", "desk lamp",
+    "piano bench") whose first word names a kind the map has: the thing is found by its
+    general word (stool) and is likely near that kind (a bar): a weak "near" relation.
+    Nothing when the map has the compound's own label or lacks the first word's kind."""
+    present: set[str] = set()
+    for raw in snap.raw_labels():
+        present.update({raw.strip().lower(), *canonical_labels(raw)})
+    out: list[Constraint] = []
+    for con in cons:
+        if not isinstance(con, LabelConstraint) or con.negated:
+            continue
+        if any(label in present for label in con.labels):
+            continue
+        for label in con.labels:
+            words = label.split()
+            mod = object_vocab.canonical_label(words[0]) if len(words) > 1 else None
+            if mod is None or mod in _EVERYWHERE or mod not in present or mod == label:
+                continue
+            out.append(
+                RelationConstraint(
+                    id=f"{con.id}~{mod}",
+                    predicate="near",
+                    landmark=Landmark(target=Target(labels=(mod,), noun=words[0])),
+                    weight=COMPOUND_NEAR_WEIGHT,
+                    text=f"a {label} is by a {mod} (the map says only {words[-1]})",
+                )
+            )
+            break
+    return tuple(out)
+
+
+# Weight of the room a function is usually done in ("wash dishes": a kitchen).
+USUAL_ROOM_WEIGHT = 0.3
+
+
+def usual_rooms(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
+    """A weak room constraint for a function that is usually done in one type of room
+    ("wash a few dishes": a sink in the kitchen, not the one in the toilet), when the
+    request names no room itself."""
+    if any(isinstance(c, RoomConstraint) for c in cons):
+        return ()
+    for con in cons:
+        if isinstance(con, FunctionConstraint) and not con.negated:
+            rtype = usual_room(con.function)
+            if rtype is not None:
+                return (
+                    RoomConstraint(
+                        id=f"{con.id}~room",
+                        type=rtype,
+                        name=rtype,
+                        weight=USUAL_ROOM_WEIGHT,
+                        text=f"'{con.function}' is usually done in a {rtype} (functions.toml)",
+                    ),
+                )
+    return ()
+
+
 class Compiler:
     """Turns parsed requests into plans for one map snapshot."""
 
@@ -289,6 +355,7 @@ class Compiler:
         viewpoint: Viewpoint | None = None,
     ) -> NodeSpec:
         cons = (*implied_constraints(key, target, cons), *cons)
+        cons = (*cons, *compound_nearness(cons, self.snap), *usual_rooms(cons))
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
         spec.viewpoint = viewpoint

@@ -2,7 +2,8 @@
 
 A room is matched by the first of these steps that finds it, and the reason says which:
 
-1. **label**: its label names the type asked for: fully, or when the map inferred the
+1. **label**: its label names the type asked for (or another type the same word names
+   as often: "den" is a family room and a TV room, ``also`` in ``rooms.toml``): fully, or when the map inferred the
    label with little confidence (best type below :data:`LABEL_SURE_P`), a little less
    (down to :data:`LABEL_LO`), so a confidently labelled room wins a tie;
 2. **alternatives**: the type is among the room's inferred types (``RoomNode.types``):
@@ -32,7 +33,7 @@ import numpy as np
 from inherit_sg.retrieval.similarity import LABEL_COS_HI, LABEL_COS_LO, PhraseSimilarity, graded
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from inherit_sg.vocab import objects as object_vocab
-from inherit_sg.vocab.rooms import related, room_qualifier, room_type
+from inherit_sg.vocab.rooms import also_named, related, room_qualifier, room_type
 
 Matches = dict[str, tuple[float, str]]
 
@@ -187,16 +188,21 @@ def match_rooms(
     *,
     negated: bool = False,
     beside: str = "",
+    opening: bool = False,
 ) -> Matches:
     """Room id → (similarity, reason) for a request naming room type ``rtype`` (None when
     its words name no type) with ``words``; see the module docstring for the steps.
-    ``negated``: the constraint excludes the rooms ("not in the kitchen")."""
+    ``negated``: the constraint excludes the rooms ("not in the kitchen"); ``opening``:
+    the rooms that open onto a matched room match as well ("the door to the toilet")."""
     out: Matches = {}
     named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
+    # "den" names a family room and a TV room alike (``also`` in rooms.toml).
+    wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
     for rid in sorted(snap.rooms):
         types = room_type_sims(rid, snap)
-        if rtype is not None and rtype in types:
-            out[rid] = _by_type(rid, rtype, types)
+        exact = [_by_type(rid, t, types) for t in dict.fromkeys(wanted) if t in types]
+        if exact:
+            out[rid] = max(exact, key=lambda hit: hit[0])
             continue
         found = _by_alias(rid, rtype, named, types, with_related=not negated)
         if found is not None and found[0] >= MIN_MATCH:
@@ -208,7 +214,18 @@ def match_rooms(
         qualify_rooms(out, qualifier, rtype, snap)
     if beside:
         rooms_beside(out, beside, snap)
+    if opening:
+        _add_openings(out, snap)
     return out
+
+
+def _add_openings(out: Matches, snap: MapSnapshot) -> None:
+    """Give every room that opens onto a matched room the matched room's similarity
+    (a door to the toilet may be mapped in the hall it opens from), in place."""
+    for rid, (value, why) in sorted(out.items()):
+        for other in sorted(snap.neighbours.get(rid, set())):
+            if other in snap.rooms and (other not in out or out[other][0] < value):
+                out[other] = (value, f"room {other} opens onto room {rid}: {why}")
 
 
 def _anchor_rooms(beside: str, snap: MapSnapshot) -> set[str]:

@@ -111,6 +111,30 @@ def kinds_serving(function: str) -> tuple[str, ...]:
     return tuple(dict.fromkeys(found))
 
 
+@lru_cache(maxsize=1)
+def _usual_rooms() -> dict[str, str]:
+    from inherit_sg.vocab.rooms import room_types
+
+    table = load_table("functions").get("rooms", {})
+    if not isinstance(table, dict):
+        raise VocabularyError("functions.toml: [rooms] must be a table")
+    known = set(room_types())
+    out: dict[str, str] = {}
+    for function, rtype in table.items():
+        if not isinstance(rtype, str) or rtype not in known:
+            raise VocabularyError(
+                f"functions.toml [rooms] {function!r}: {rtype!r} is not a room type of rooms.toml"
+            )
+        out[function.strip().lower()] = rtype
+    return out
+
+
+def usual_room(function: str) -> str | None:
+    """The room type where ``function`` is usually done ("wash dishes": a kitchen), from
+    ``[rooms]`` in ``functions.toml``; None when it has none."""
+    return _usual_rooms().get(function.strip().lower())
+
+
 def function_verbs() -> frozenset[str]:
     """Every verb (lemma or "lemma particle") that names a function."""
     return frozenset(v for s in senses() for v in s.verbs)

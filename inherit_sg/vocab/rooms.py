@@ -22,7 +22,19 @@ _FILE = "rooms.toml"
 # Trailing room numbers: "bedroom 2", "bedroom #2", "office 2b".
 _NUMBER = re.compile(r"#?\d+[a-z]?")
 _FIELDS = frozenset(
-    {"aliases", "prior", "base", "area", "narrow", "bare", "related", "evidence", "single", "sets"}
+    {
+        "aliases",
+        "also",
+        "prior",
+        "base",
+        "area",
+        "narrow",
+        "bare",
+        "related",
+        "evidence",
+        "single",
+        "sets",
+    }
 )
 
 
@@ -37,7 +49,9 @@ class RoomType:
     only fixtures; ``related`` the types people name it by, with a similarity;
     ``single`` whether a storey seldom has two rooms of the type; ``sets`` maps object
     kinds to ``(count, weight)``: at least ``count`` objects of the kind (or of kinds of
-    it) together say ``weight`` more for the type (a set of chairs around a table).
+    it) together say ``weight`` more for the type (a set of chairs around a table);
+    ``also`` the names of other types that people use for this one just as often ("den"
+    for a TV room as well as a family room).
     """
 
     name: str
@@ -51,6 +65,7 @@ class RoomType:
     related: dict[str, float] = field(default_factory=dict)
     single: bool = False
     sets: dict[str, tuple[int, float]] = field(default_factory=dict)
+    also: tuple[str, ...] = ()
 
 
 def _number(entry: dict[str, Any], key: str, where: str, default: float) -> float:
@@ -162,6 +177,7 @@ def _room_type(name: str, entry: Any) -> RoomType:
         related=_related(entry, where),
         single=_flag(entry, "single", where),
         sets=_sets(entry, where),
+        also=string_list(entry, "also", where),
     )
 
 
@@ -180,6 +196,36 @@ def _types() -> tuple[RoomType, ...]:
                     f"{_FILE} [types.{t.name}]: 'related' names {other!r}, not another type"
                 )
     return out
+
+
+@lru_cache(maxsize=1)
+def _also_table() -> dict[str, tuple[str, ...]]:
+    words = room_words()
+    out: dict[str, list[str]] = {}
+    for t in _types():
+        for phrase in t.also:
+            key = " ".join(phrase.lower().split())
+            named = words.get(key)
+            if named is None or named == t.name:
+                raise VocabularyError(
+                    f"{_FILE} [types.{t.name}]: 'also' entry {key!r} must be the name or an "
+                    "alias of another type"
+                )
+            out.setdefault(key, []).append(t.name)
+    return {k: tuple(v) for k, v in out.items()}
+
+
+def also_named(phrase: str) -> tuple[str, ...]:
+    """The types besides :func:`room_type` that ``phrase`` names just as well ("den": a
+    family room, also a TV room), from the ``also`` lists of ``rooms.toml``; read like
+    :func:`room_type` (longest tail, trailing numbers ignored)."""
+    words = _words(phrase)
+    table = room_words()
+    for start in range(len(words)):
+        tail = " ".join(words[start:])
+        if tail in table:
+            return _also_table().get(tail, ())
+    return ()
 
 
 def room_types() -> tuple[str, ...]:
@@ -296,7 +342,15 @@ def level_words() -> tuple[str, ...]:
 
 def clear_caches() -> None:
     """Forget the parsed tables (after the files or ``DATA_DIR`` changed; tests)."""
-    for fn in (_types, room_type_table, evidence, _related_table, fixtures, room_words):
+    for fn in (
+        _types,
+        room_type_table,
+        evidence,
+        _related_table,
+        fixtures,
+        room_words,
+        _also_table,
+    ):
         fn.cache_clear()
     _qualifiers.cache_clear()
     level_words.cache_clear()

@@ -109,7 +109,9 @@ def check(parsed: ParsedQuery, exp: dict[str, Any]) -> None:
         assert floors == exp["floors"]
     if "relations" in exp:
         _check_relations(list(cons), exp["relations"], "relations")
-    if "superlative" in exp:
+    if "superlative" in exp and exp["superlative"] is None:
+        assert not parsed.of_kind("superlative")
+    elif "superlative" in exp:
         sups = parsed.of_kind("superlative")
         assert len(sups) == 1, sups
         sup = sups[0]

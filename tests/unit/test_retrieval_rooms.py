@@ -139,12 +139,15 @@ def test_the_request_words_are_read_through_aliases() -> None:
 
 
 def test_related_types_match_maps_without_alternatives() -> None:
-    # an oracle map: labels only, no inferred types ("lounge" is a family room now)
+    # an oracle map: labels only, no inferred types
     snap = _snap({"l": ("living room", ()), "k": ("kitchen", ())})
-    found = _room(snap, "family room", "lounge")
+    found = _room(snap, "family room", "family lounge")
     assert set(found) == {"room:l"}
     value, why = found["room:l"]
     assert value == pytest.approx(RELATED_SCALE * 0.8) and "related" in why
+    # "lounge" names a family room and, as often, a living room (``also``): fully
+    found = _room(snap, "family room", "lounge")
+    assert set(found) == {"room:l"} and found["room:l"][0] == 1.0
 
 
 def test_related_types_say_nothing_against_a_room() -> None:

@@ -14,6 +14,8 @@ taken by the first constraint built after it, so it scopes exactly that constrai
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from inherit_sg.retrieval.constraints import (
     AreaConstraint,
     AttributeConstraint,
@@ -62,10 +64,21 @@ _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", 
 
 # Prepositions that place a room next to another room or a thing ("the bathroom off the
 # entry hall", "the bedroom next to the kitchen", "the bathroom by the front door").
+# Kinds that lead from one place to another ("the door to the toilet").
+_PASSAGES = frozenset({"door", "stairs", "arch", "gate", "doorway", "hallway"})
 _BESIDE_ROOM = frozenset({
     "off", "off of", "next to", "by", "near", "beside", "close to", "adjacent to",
     "across from", "opposite",
 })  # fmt: skip
+
+
+def _leads_somewhere(np: NP) -> bool:
+    """Whether ``np`` names a way through (a door, stairs, an arch): "the door to the
+    toilet", "the stairs to the basement" say where it leads, not a second thing."""
+    return np.kind == OBJECT and any(
+        label in _PASSAGES or any(k in _PASSAGES for k in object_vocab.is_a(label))
+        for label in np.labels
+    )
 
 
 def _room_in_compound(head: Tok) -> tuple[str, str] | None:
@@ -501,6 +514,8 @@ class Grammar(Cursor):
                 np.constraints += cand.constraints  # "a place to find something to read"
                 np.places += cand.places
             return True
+        if tok.has("to", "prep") and tok.text in ("to", "into") and _leads_somewhere(np):
+            return self._leads_to(np)
         if tok.has("like") and self.np_start(1):
             self.advance()
             sub = self.parse_np(landmark=True)
@@ -525,6 +540,35 @@ class Grammar(Cursor):
                 np.words += ["of", *sub.words]
             return True
         return False
+
+    def _leads_to(self, np: NP) -> bool:
+        """ "the door to the toilet": the door is one of the room's (a room constraint on
+        the door itself, never on what the request seeks); "the door to the garden": the
+        words stay with the door."""
+        if self.at("anaphor", "side", k=1) or self.at("side", k=2):
+            return False  # "the door to its right", "the door to the left"
+        snap = self.state()
+        self.advance()
+        start = self.i
+        sub = self.parse_np(landmark=True) if self.np_start() else None
+        if sub is None or sub.kind not in (OBJECT, ROOM, FLOOR):
+            self.restore(snap)
+            return False
+        rtype = sub.room_type if sub.kind == ROOM else room_vocab.room_type(sub.noun)
+        if rtype is not None:  # "toilet" names a room here, though it is also a thing
+            np.constraints.append(
+                RoomConstraint(
+                    type=rtype,
+                    name=sub.noun,
+                    text=f"to {sub.noun}",
+                    weight=self.weight("room"),
+                    opening=True,
+                )
+            )
+        else:
+            said = [t.text for t in self.toks[start : self.i] if not t.has("det")]
+            np.words += ["to", *said]
+        return True
 
     def _plural_clause(self, np: NP) -> bool:
         """A relative clause whose verb is plural ("that are", "which aren't", "that
@@ -736,13 +780,18 @@ class Grammar(Cursor):
         if lm.grouped and not neg and predicate in ("inside", "on", "near", "next_to"):
             self.group = lm  # "in the row of lockers": what "the last one" picks from
             return [*lm.constraints, *places]
-        where = lexicon().placement_nouns.get(lm.words[-1]) if len(lm.words) == 1 else None
+        # a room word before the noun names the room ("on the living room wall")
+        rooms = [c for c in lm.constraints if isinstance(c, RoomConstraint)]
+        bare = len(lm.words) == 1 or (
+            len(lm.words) == 2 and bool(rooms) and rooms == lm.constraints
+        )
+        where = lexicon().placement_nouns.get(lm.words[-1]) if bare else None
         if where is not None and predicate in _PLACEMENT_PREDICATES:
             # "on the far wall", "in the back corner": where in the room, not an object
             placement = PlacementConstraint(
                 where=where, negated=neg, weight=weighted("placement", stress), text=text
             )
-            return [placement, *places]
+            return [placement, *[replace(c, negated=neg) for c in rooms], *places]
         if lm.kind in (ROOM, AREA) and predicate in _PLACE_PREDICATES and tok.text != "on":
             if lm.kind == ROOM:
                 place: Constraint = self._room(lm, neg, text, stress)

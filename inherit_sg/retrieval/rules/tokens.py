@@ -24,6 +24,9 @@ MAX_QUERY_CHARS = 5000
 _QUOTES = str.maketrans({"’": "'", "‘": "'", "`": "'", "´": "'", "“": '"', "”": '"'})
 _CAMEL = re.compile(r"(?<=[a-z])(?=[A-Z][a-z])")
 _SEPARATORS = re.compile(r"[-_/+#]+")
+# A hyphen with space on both sides is a dash between phrases ("the master bath - the
+# other sink"), not a joiner of words ("medium-sized").
+_SPACED_DASH = re.compile(r"(?:^|\s)-{1,2}(?=\s|$)")
 _LETTER_DIGIT = re.compile(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?!st\b|nd\b|rd\b|th\b)(?=[A-Za-z])")
 _GLUED_STOP = re.compile(r"(?<=[a-z])([.!?;,])(?=[A-Za-z])")
 _SPACES = re.compile(r"\s+")
@@ -90,6 +93,7 @@ def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
     text = _CAMEL.sub(" ", text)
+    text = _SPACED_DASH.sub(" \u2014", text)
     text = _SEPARATORS.sub(" ", text)
     text = _LETTER_DIGIT.sub(" ", text)
     text = _GLUED_STOP.sub(r"\1 ", text)

@@ -12,7 +12,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from inherit_sg.retrieval.constraints import Constraint, FunctionConstraint
+from inherit_sg.retrieval.constraints import (
+    Constraint,
+    FunctionConstraint,
+    RelationConstraint,
+    RoomConstraint,
+)
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import (
     Sense,
@@ -20,7 +25,7 @@ from inherit_sg.retrieval.rules.functions import (
     match_function,
     open_function,
 )
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ROOM
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab.lexicon import lexicon
 
@@ -64,6 +69,8 @@ def is_verb_here(g: Grammar) -> bool:
     if prev.has("filler"):
         if any(w in prev.text for w in _VERB_FILLERS):
             return True
+        if tok.has("fverb") and tok.has("super", "adj") and g.at("det", k=1):
+            return True  # "please lower the blinds": the verb, not "lower" = lowest
         if prev.text.endswith(" to"):  # "go to relax" (but "go to the study")
             return not tok.has("noun", "room", "unk")
     return False
@@ -151,7 +158,31 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     # relations and places place the target
     where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
     places = list(obj.places) if obj is not None else []
-    return [made, *where, *places], head
+    return [made, *where, *places, *_done_from(g)], head
+
+
+def _done_from(g: Grammar) -> list[Constraint]:
+    """Where a function is done from ("watch something from bed", "eat from the counter"):
+    near that thing, or in that room; it is not what the request seeks. Empty (cursor
+    unmoved) when no such phrase follows."""
+    if not g.at("from") or not g.np_start(1):
+        return []
+    snap = g.state()
+    g.advance()
+    lm = g.parse_np(landmark=True)
+    text = f"from {lm.noun}" if lm is not None else ""
+    if lm is not None and lm.kind == OBJECT and lm.labels:
+        g.notes.append(f"'{text}': where it is done from, near the target")
+        return [
+            RelationConstraint(
+                predicate="near", landmark=lm.landmark(), weight=g.weight("relation"), text=text
+            )
+        ]
+    if lm is not None and lm.kind == ROOM and lm.room_type is not None:
+        room = RoomConstraint(type=lm.room_type, name=lm.noun, text=text, weight=g.weight("room"))
+        return [room]
+    g.restore(snap)
+    return []
 
 
 def _before_place(toks: list[Tok]) -> int:
@@ -197,7 +228,10 @@ def _imperative(g: Grammar, start: int) -> bool:
     """Whether the verb at ``start`` opens a command ("draw the drapes", "wipe down the
     kitchen island"): a base-form verb at the start of a clause."""
     tok = g.toks[start]
-    if tok.tag != "VB":
+    after = g.toks[start + 1] if start + 1 < len(g.toks) else None
+    # a short command's verb is often tagged as an adjective ("lower the blinds": JJR)
+    verb_like = tok.has("fverb") and after is not None and after.has("det")
+    if tok.tag != "VB" and not verb_like:
         return False
     prev = g.toks[start - 1] if start > 0 else None
     return prev is None or (prev.has("comma", "and", "filler") and not prev.has("to", "seeker"))
