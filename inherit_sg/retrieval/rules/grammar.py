@@ -178,9 +178,13 @@ class Grammar(Cursor):
         return count
 
     def _head_follows(self, k: int) -> bool:
-        """A noun, "one" or an adjective then a noun follows ``k`` tokens ahead."""
+        """A noun, "one" (also "one of the") or an adjective then a noun follows ``k``
+        tokens ahead."""
         if self.nounish(k) or self.at("one", k=k):
             return True
+        tok = self.peek(k)
+        if tok is not None and tok.has("det") and tok.text.startswith("one of"):
+            return True  # "the middle one of the three chairs"
         return self.at("colour", "material", "adj", k=k) and (
             self.nounish(k + 1) or self.at("one", k=k + 1)
         )
@@ -472,7 +476,11 @@ class Grammar(Cursor):
             self.advance()
             np.constraints.append(self._superlative(tok.tags["super"], tok.text))
             return True
-        if np.superlative in ("closest", "farthest") and tok.has("to", "from"):
+        if (
+            np.superlative in ("closest", "farthest")
+            and tok.has("to", "from")
+            and not self.at("fverb", "overb", k=1)  # "the closest place to sit to …"
+        ):
             side = self._towards_side()
             if side is not None:  # "the farthest chair to the right"
                 np.superlative, np.direction = None, side

@@ -17,6 +17,7 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     RelationConstraint,
     RoomConstraint,
+    Superlative,
 )
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import (
@@ -156,9 +157,21 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
     # "use the toilet close to the bookshelf", "get a drink in the kitchen": the object's
     # relations and places place the target
-    where = [c for c in obj.constraints if c.kind == "relation"] if obj is not None else []
+    where = [c for c in obj.constraints if _places_target(c, obj)] if obj is not None else []
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
+
+
+def _places_target(con: Constraint, obj: NP) -> bool:
+    """Whether a constraint of a function verb's object places the target: a relation
+    ("use the toilet next to the bookshelf"), a nearest/farthest to something ("… closest
+    to the bookshelf"), or any measure of an object that names nothing ("somewhere to sit
+    closest to the TV"); not "the largest book" of "read the largest book"."""
+    if con.kind == "relation":
+        return True
+    if isinstance(con, Superlative):
+        return con.landmark is not None or not obj.labels
+    return False
 
 
 def _done_from(g: Grammar) -> list[Constraint]:
