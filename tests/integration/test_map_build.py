@@ -135,16 +135,55 @@ def test_interrupted_build_leaves_an_openable_map(house_dir: Path, tmp_path: Pat
     deadline = time.time() + 120
     # wait until at least one batch was committed, then kill without warning
     while time.time() < deadline:
-        state = map_dir / "geometry.pkl"
+        state = map_dir / "geometry.npz"
         if state.is_file():
             break
         time.sleep(0.2)
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=30)
-    assert (map_dir / "geometry.pkl").is_file(), "no batch was committed before the deadline"
+    assert (map_dir / "geometry.npz").is_file(), "no batch was committed before the deadline"
     with MapStore.open(map_dir, write=True) as store:  # the lock of the dead writer is stale
         graph = store.load_graph()
         assert len(list(graph.objects())) > 0
         for obj in graph.objects():
             # early in a walk an object may lie outside every room seen so far
             assert (graph.parent(obj.id) is not None) == (obj.room_id is not None), obj.id
+
+
+class _Payload:
+    """Unpickling this runs ``touch <marker>``: what a planted map file could do."""
+
+    def __init__(self, marker: Path) -> None:
+        self.marker = marker
+
+    def __reduce__(self) -> tuple[object, tuple[str, ...]]:
+        import os
+
+        return (os.system, (f"touch {self.marker}",))
+
+
+def test_a_planted_state_file_runs_nothing(
+    built: tuple[Path, dict], house_dir: Path, tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    import pickle
+
+    map_dir, _ = built
+    work = tmp_path / "shared-map"
+    shutil.copytree(map_dir, work)
+    marker = tmp_path / "payload-ran"
+    # the old file name, as a map of an earlier version (or an attacker) would leave it
+    (work / "geometry.npz").unlink()
+    (work / "geometry.pkl").write_bytes(pickle.dumps(_Payload(marker)))
+    with caplog.at_level("WARNING"):
+        build_map(house_dir, work, session_name="after the plant", max_frames=20)
+    assert not marker.exists(), "a map file ran code"
+    assert "not read" in caplog.text and "geometry.pkl" in caplog.text
+    # the same payload under the new name is refused as data, and nothing runs either
+    (work / "geometry.npz").write_bytes(pickle.dumps(_Payload(marker)))
+    caplog.clear()
+    with caplog.at_level("WARNING"):
+        build_map(house_dir, work, session_name="third", max_frames=20)
+    assert not marker.exists(), "a map file ran code"
+    assert "ignoring geometry state" in caplog.text
+    with MapStore.open(work) as store:
+        assert [s.name for s in store.sessions()][-2:] == ["after the plant", "third"]
