@@ -102,12 +102,15 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         """Run a read-only Cypher query; write clauses answer 403."""
         served = served_map(request, map)
         with served.lock:
-            result = served.require().cypher(
-                body.query,
-                body.params,
-                max_rows=body.max_rows,
-                timeout_s=body.timeout_s or cfg.service.cypher_timeout_s,
-            )
+            service = served.require()
+        # not under the map's lock: the statement runs in the map's Cypher worker (a
+        # process of its own, stopped at the time limit) and blocks no other request
+        result = service.cypher(
+            body.query,
+            body.params,
+            max_rows=body.max_rows,
+            timeout_s=body.timeout_s or cfg.service.cypher_timeout_s,
+        )
         return CypherResponse(columns=result.columns, rows=result.rows, truncated=result.truncated)
 
     @app.get("/v1/maps/{map}/objects")

@@ -68,6 +68,13 @@ class CypherError(InputError):
     code = "cypher_error"
 
 
+class CypherCrashError(CypherError):
+    """A read-only Cypher statement crashed the graph database engine in its worker
+    process; the map and the service are unaffected."""
+
+    code = "cypher_crashed"
+
+
 class QueryTimeoutError(CypherError):
     """A Cypher statement ran past its time limit and was interrupted."""
 

@@ -4,6 +4,7 @@ thin faces over it (DESIGN.md §3)."""
 from __future__ import annotations
 
 import json
+import threading
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -11,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 from inherit_sg.config import Config, load_config
 from inherit_sg.errors import InputError, MapError
 from inherit_sg.store import CypherResult, MapStore
+from inherit_sg.store.cypher_worker import CypherWorker
+from inherit_sg.store.mapdir import GRAPH_FILE
 
 if TYPE_CHECKING:
     import numpy as np
@@ -44,6 +47,8 @@ class MapService:
     def __init__(self, store: MapStore, config: Config) -> None:
         self.store = store
         self.config = config
+        self._cypher_worker: CypherWorker | None = None
+        self._worker_lock = threading.Lock()
 
     @classmethod
     def open(
@@ -54,7 +59,10 @@ class MapService:
         return cls(MapStore.open(path, write=write, config=cfg), cfg)
 
     def close(self) -> None:
-        """Release the map."""
+        """Release the map (and stop its Cypher worker)."""
+        if self._cypher_worker is not None:
+            self._cypher_worker.close()
+            self._cypher_worker = None
         self.store.close()
 
     def __enter__(self) -> MapService:
@@ -96,10 +104,20 @@ class MapService:
         max_rows: int | None = 1000,
         timeout_s: float | None = None,
     ) -> CypherResult:
-        """Run a read-only Cypher query (interrupted after ``timeout_s``, if given)."""
-        return self.store.cypher(
-            query, params, read_only=True, max_rows=max_rows, timeout_s=timeout_s
-        )
+        """Run a read-only Cypher query (stopped after ``timeout_s``, if given). On a map
+        open read-only the statement runs in a worker process, so a statement that
+        crashes the database engine costs only itself (a CypherError) and the next one
+        runs in a fresh worker (:mod:`~inherit_sg.store.cypher_worker`); on a map open for
+        writing (Kuzu then admits no other process) it runs in this process."""
+        if self.store.writable:
+            return self.store.cypher(
+                query, params, read_only=True, max_rows=max_rows, timeout_s=timeout_s
+            )
+        with self._worker_lock:
+            if self._cypher_worker is None:
+                self._cypher_worker = CypherWorker(self.store.path / GRAPH_FILE)
+            worker = self._cypher_worker
+        return worker.run(query, params, max_rows=max_rows, timeout_s=timeout_s)
 
     def query(
         self,

@@ -236,3 +236,21 @@ def test_cypher_time_limit_answers_408_and_the_map_keeps_working(client: TestCli
     assert resp.status_code == 408
     assert resp.json()["error"] == "query_timeout" and "0.2 s" in resp.json()["message"]
     assert cypher(client, "MATCH (f:Floor) RETURN count(f)")["rows"] == [[1]]
+
+
+# Kuzu 0.11.3 ends its process with a segmentation fault on this read-only statement (a
+# computed SKIP gets past the text guard); it runs in the map's Cypher worker.
+CRASHING_CYPHER = "MATCH (o:Object) RETURN o.id ORDER BY o.id SKIP (20000) LIMIT 5"
+
+
+def test_a_statement_that_crashes_the_engine_leaves_the_service_up(client: TestClient) -> None:
+    for _ in range(2):
+        resp = client.post(f"/v1/maps/{NAME}/cypher", json={"query": CRASHING_CYPHER})
+        assert resp.status_code == 400, resp.text
+        assert resp.json()["error"] == "cypher_crashed"
+        assert "crashed the graph database engine" in resp.json()["message"]
+        # the service answers the next statement and the next request
+        assert cypher(client, "MATCH (f:Floor) RETURN count(f)")["rows"] == [[1]]
+        found = client.post(f"/v1/maps/{NAME}/query", json={"text": "the bed"})
+        assert found.status_code == 200 and found.json()["answer"] is not None
+    assert client.get("/readyz").json()["maps"] == {NAME: "ok"}
