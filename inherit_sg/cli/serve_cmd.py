@@ -16,6 +16,7 @@ import typer
 
 from inherit_sg.cli.output import handle_errors
 from inherit_sg.config import Config
+from inherit_sg.errors import InputError
 
 LOOPBACK_NAMES = frozenset({"localhost", "localhost.localdomain", "ip6-localhost"})
 
@@ -32,13 +33,16 @@ def is_loopback(host: str) -> bool:
 
 
 def exposure_warning(host: str, config: Config) -> str | None:
-    """A warning when ``host`` is reachable from other machines and no API key is set."""
+    """What is wrong when ``host`` is reachable from other machines and no API key is set
+    (anyone could then read the maps, run Cypher and start mapping sessions); None when
+    the host is loopback or a key is set."""
     svc = config.service
     if is_loopback(host) or svc.read_keys or svc.write_keys:
         return None
     return (
-        f"warning: serving on {host} without API keys — anyone who can reach this port can "
-        "read the maps and run Cypher; set service.read_keys / service.write_keys"
+        f"serving on {host} without API keys — anyone who can reach this port can read the "
+        "maps, run Cypher and start mapping sessions; set service.read_keys / "
+        "service.write_keys"
     )
 
 
@@ -60,8 +64,16 @@ def serve(
         list[str] | None,
         typer.Option("--set", help="Config override section.field=value (repeatable)."),
     ] = None,
+    insecure: Annotated[
+        bool,
+        typer.Option(
+            "--insecure",
+            help="Serve on a non-loopback host without API keys (refused otherwise).",
+        ),
+    ] = False,
 ) -> None:
-    """Serve maps at http://HOST:PORT/v1/maps/{name} (name = directory name)."""
+    """Serve maps at http://HOST:PORT/v1/maps/{name} (name = directory name). On a host
+    other machines can reach, API keys are required unless --insecure is given."""
     import uvicorn
 
     from api.app import create_app
@@ -70,10 +82,12 @@ def serve(
     cfg = load_config(config_file, overrides or [])
     bind_host = host if host is not None else cfg.service.host
     bind_port = port if port is not None else cfg.service.port
+    exposed = exposure_warning(bind_host, cfg)
+    if exposed is not None and not insecure:
+        raise InputError(f"refusing to start: {exposed} (or pass --insecure)")
     app = create_app(map_dir, cfg)
-    warning = exposure_warning(bind_host, cfg)
-    if warning is not None:
-        typer.secho(warning, fg=typer.colors.YELLOW, err=True)
+    if exposed is not None:
+        typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
     shown = f"[{bind_host}]" if ":" in bind_host else bind_host
     typer.echo(f"serving {map_dir} at http://{shown}:{bind_port}/v1/maps/")
     uvicorn.run(app, host=bind_host, port=bind_port, log_level="info")

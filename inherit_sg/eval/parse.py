@@ -123,6 +123,8 @@ def expected_signatures(exp: dict[str, Any]) -> Signature:
         return ("part", _part_noun(exp["value"]))
     if kind == "label":
         return ("label", *sorted(kinds_of(str(exp["value"]))))
+    if kind == "ordinal":  # "not the right one": which side (or the middle) is ruled out
+        return ("ordinal", str(exp.get("direction") or ""))
     return (kind,)
 
 
@@ -140,6 +142,8 @@ def parsed_signature(con: Constraint) -> Signature:
         return ("floor", str(con.level if con.level is not None else con.relative))
     if isinstance(con, PlacementConstraint):
         return ("placement", con.where)
+    if isinstance(con, Superlative) and con.measure in ("ordinal", "middle"):
+        return ("ordinal", con.direction or "")
     if isinstance(con, LabelConstraint):
         out: set[str] = set()
         for label in (*con.labels, con.noun):

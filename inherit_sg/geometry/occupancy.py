@@ -12,6 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from inherit_sg.errors import FrameError
+
+# The widest a floor's occupancy grid may grow (metres on a side): every layer aligned with
+# it (room ids, lintel counts) is a dense array of this size.
+MAX_EXTENT_M = 300.0
+
 
 @dataclass(frozen=True)
 class LogOddsParams:
@@ -57,8 +63,22 @@ class OccupancyGrid:
         return self.logodds.size == 0
 
     def ensure_contains(self, xmin: float, ymin: float, xmax: float, ymax: float) -> None:
-        """Grow the grid (by at least the margin) so the box lies inside it."""
+        """Grow the grid (by at least the margin) so the box lies inside it; FrameError
+        (nothing changed) when the grid would then span more than :data:`MAX_EXTENT_M`
+        (a pose far from the rest of the walk)."""
         res = self.resolution
+        lo_x, lo_y = (
+            (xmin, ymin) if self.empty else (min(xmin, self.origin_x), min(ymin, self.origin_y))
+        )
+        h, w = self.shape
+        hi_x = xmax if self.empty else max(xmax, self.origin_x + w * res)
+        hi_y = ymax if self.empty else max(ymax, self.origin_y + h * res)
+        span = max(hi_x - lo_x, hi_y - lo_y)
+        if not math.isfinite(span) or span > MAX_EXTENT_M:
+            raise FrameError(
+                f"the frame would stretch a floor's occupancy grid to {span:.0f} m, beyond "
+                f"{MAX_EXTENT_M:g} m: its pose lies far from the rest of the walk"
+            )
         if self.empty:
             m = self.margin_cells * res
             self.origin_x = math.floor((xmin - m) / res) * res

@@ -41,6 +41,8 @@ from inherit_sg.store import MapStore
 log = logging.getLogger(__name__)
 
 MAPPING, FINISHING, FINISHED, FAILED = "mapping", "finishing", "finished", "failed"
+# What one unusable frame raises while it is mapped: it is left out, the session goes on.
+_FRAME_FAULTS = (FrameError, ArithmeticError, ValueError)
 DEFAULT_FRAME_QUEUE = 8
 DEFAULT_FLUSH_EVERY = 20
 
@@ -94,6 +96,7 @@ class LiveSession:
         self.summary: dict[str, Any] | None = None
         self._received = 0
         self._blind = 0  # frames the configured segmenter cannot look at
+        self._rejected: list[str] = []  # frames the mapper could not use, and why
         self._frame_s = 0.0
         self._frames: queue.Queue[Frame] = queue.Queue(maxsize=frame_queue)
         self._lock = threading.Lock()  # state, intake counters and the frame queue
@@ -219,6 +222,12 @@ class LiveSession:
                 t0 = time.perf_counter()
                 self.mapper.process_frame(frame)
                 self._frame_s += time.perf_counter() - t0
+            except _FRAME_FAULTS as exc:
+                # one frame the mapper cannot use (a pose far from the walk, numbers that
+                # overflow) is left out; the frames accepted before and after it count
+                log.warning("live session %s: frame %s left out: %s", self.id, frame.index, exc)
+                with self._lock:
+                    self._rejected.append(f"frame {frame.index}: {exc}")
             except BaseException as exc:
                 with self._lock:
                     self._fail(exc)
@@ -238,6 +247,7 @@ class LiveSession:
                 "state": self.state,
                 "frames_received": self._received,
                 "frames_processed": progress.frames,
+                "frames_rejected": len(self._rejected),
                 "frames_queued": self._frames.qsize(),
                 "keyframes": keyframes,
                 "keyframes_done": progress.keyframes_done,
@@ -251,13 +261,19 @@ class LiveSession:
             }
 
     def _warnings(self) -> list[str]:
-        if not self._blind:
-            return []
-        return [
-            f"{self._blind} frames came without instance masks, which the 'dataset' segmenter "
-            "needs: they add geometry but no objects (send instances + instance_labels, or "
-            "configure perception.segmenter = 'sam3' or 'classical')"
-        ]
+        out = []
+        if self._blind:
+            out.append(
+                f"{self._blind} frames came without instance masks, which the 'dataset' "
+                "segmenter needs: they add geometry but no objects (send instances + "
+                "instance_labels, or configure perception.segmenter = 'sam3' or 'classical')"
+            )
+        if self._rejected:
+            out.append(
+                f"{len(self._rejected)} frames were left out because the mapper could not "
+                f"use them (last: {self._rejected[-1]})"
+            )
+        return out
 
     # ------------------------------------------------------------------ finish
     def finish(self) -> dict[str, Any]:

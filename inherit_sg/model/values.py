@@ -17,6 +17,11 @@ from inherit_sg.errors import FrameError
 Vec3 = tuple[float, float, float]
 
 
+# The farthest a camera may be from the map's origin on any axis (metres): a building,
+# or a campus, fits well inside; a pose beyond it is a broken one (1e308).
+MAX_POSITION_M = 10_000.0
+
+
 def _vec3(values: Iterable[float], what: str) -> Vec3:
     out = tuple(float(v) for v in values)
     if len(out) != 3 or not all(math.isfinite(v) for v in out):
@@ -41,6 +46,12 @@ class Pose:
         r = m[:3, :3]
         if not np.allclose(r @ r.T, np.eye(3), atol=1e-3) or np.linalg.det(r) < 0:
             raise FrameError("pose rotation is not a proper rotation matrix")
+        far = float(np.abs(m[:3, 3]).max())
+        if far > MAX_POSITION_M:
+            raise FrameError(
+                f"pose translation {far:.3g} m is implausible: positions must lie within "
+                f"{MAX_POSITION_M:g} m of the map's origin"
+            )
 
     @classmethod
     def from_matrix(cls, matrix: np.ndarray | Sequence[Sequence[float]]) -> Pose:

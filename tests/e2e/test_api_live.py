@@ -262,3 +262,27 @@ def test_frames_without_masks_warn_and_mark_nothing_missing(
         json={"query": "MATCH (o:Object) WHERE o.status = 'missing' RETURN count(o)"},
     ).json()["rows"]
     assert missing == [[0]]
+
+
+def test_one_unusable_frame_loses_nothing_else(client: TestClient, dataset: Path) -> None:
+    sid = start(client, name="far pose")
+    for i in range(3):
+        assert post(client, sid, *frame_parts(dataset, i, intrinsics=i == 0)).status_code == 202
+    files, data = frame_parts(dataset, 3, intrinsics=False)
+    numbers = data["pose"].split()
+    # a broken translation is refused at the door
+    huge = [*numbers[:3], "1e308", *numbers[4:]]
+    resp = post(client, sid, files, {**data, "pose": " ".join(huge)})
+    assert resp.status_code == 400 and "implausible" in resp.json()["message"]
+    # a pose 5 km from the walk passes the door, and the mapper leaves that frame out
+    far = [*numbers[:3], str(float(numbers[3]) + 5000.0), *numbers[4:]]
+    assert post(client, sid, files, {**data, "pose": " ".join(far)}).status_code == 202
+    for i in range(3, 6):
+        assert post(client, sid, *frame_parts(dataset, i, intrinsics=False)).status_code == 202
+    wait_until(lambda: client.get(f"{BASE}/sessions/{sid}").json()["frames_queued"] == 0)
+    status = client.get(f"{BASE}/sessions/{sid}").json()
+    assert status["state"] == "mapping" and status["frames_rejected"] == 1
+    assert any("left out" in w and "beyond 300 m" in w for w in status["warnings"]), status
+    summary = client.post(f"{BASE}/sessions/{sid}/finish")
+    assert summary.status_code == 200, summary.text
+    assert summary.json()["frames"] == 6

@@ -287,7 +287,11 @@ def test_serve_takes_host_and_port_from_config(
     app.command("serve")(serve)
     runner = CliRunner()
     args = ["--map", str(map_dir), "--set", "service.host=0.0.0.0", "--set", "service.port=9123"]
-    result = runner.invoke(app, args)
+    # an exposed host without keys is refused, and nothing is served
+    refused = runner.invoke(app, args)
+    assert refused.exit_code != 0 and not calls
+    assert "refusing to start" in refused.output and "--insecure" in refused.output
+    result = runner.invoke(app, [*args, "--insecure"])
     assert result.exit_code == 0, result.output
     assert calls[-1]["host"] == "0.0.0.0" and calls[-1]["port"] == 9123
     assert "without API keys" in result.output

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from inherit_sg.errors import FrameError
 from inherit_sg.geometry.occupancy import OccupancyGrid
 from inherit_sg.geometry.raycast import band_scan, integrate_scan, world_points
 from tests.unit.geometry_fixtures import EYE, look_around, make_frame, two_rooms
@@ -96,3 +98,16 @@ def test_far_noisy_hits_weigh_less() -> None:
     near = grid.logodds[_cell(grid, 1.0, 0.0)]
     far = grid.logodds[_cell(grid, 6.0, 0.0)]
     assert near > far > 0
+
+
+def test_a_far_frame_cannot_stretch_the_grid() -> None:
+    grid = OccupancyGrid(0.05)
+    grid.ensure_contains(0.0, 0.0, 10.0, 8.0)
+    before = (grid.shape, grid.origin_x, grid.origin_y)
+    with pytest.raises(FrameError, match="beyond 300 m"):
+        grid.ensure_contains(0.0, 0.0, 5000.0, 8.0)
+    with pytest.raises(FrameError):
+        grid.ensure_contains(0.0, 0.0, float("inf"), 8.0)
+    assert (grid.shape, grid.origin_x, grid.origin_y) == before
+    grid.ensure_contains(-20.0, 0.0, 40.0, 8.0)  # a larger house still fits
+    assert grid.shape[1] > before[0][1]

@@ -191,3 +191,12 @@ def test_merge_nodes_redirects_edges_and_fuses_observations() -> None:
     assert "obj:1" in changes.removed_nodes and "obj:0" in changes.updated_nodes
     with pytest.raises(ValueError, match="cannot merge"):
         g.merge_nodes("obj:0", "area:0")
+
+
+def test_pose_rejects_an_implausible_translation() -> None:
+    m = np.eye(4)
+    m[0, 3] = 1e308
+    with pytest.raises(FrameError, match="implausible"):
+        Pose.from_matrix(m)
+    m[0, 3] = 9_000.0  # a campus-sized walk is fine
+    assert Pose.from_matrix(m).translation[0] == 9_000.0

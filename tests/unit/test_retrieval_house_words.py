@@ -91,3 +91,12 @@ def test_the_door_to_a_room_may_be_mapped_in_the_room_it_opens_from() -> None:
     assert ranked[0].id == "obj:plant_wc_door"
     ranked, _ = rank(_snap(), parse_rules("the plant next to the door to the tv room"))
     assert ranked[0].id == "obj:plant_tv_door"
+
+
+def test_the_side_ruled_out_is_kept() -> None:
+    from inherit_sg.retrieval.constraints import Superlative
+
+    parsed = parse_rules("Facing the closet doors it is the hamper on the left not the right.")
+    sides = [(c.direction, c.negated) for c in parsed.constraints if isinstance(c, Superlative)]
+    assert sides == [("left", False), ("right", True)]
+    assert parsed.viewpoint is not None and parsed.target.labels == ("basket",)

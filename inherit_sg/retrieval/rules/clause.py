@@ -15,8 +15,10 @@ from inherit_sg.retrieval.constraints import (
     Constraint,
     LabelConstraint,
     Landmark,
+    PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
+    Superlative,
     Target,
     Viewpoint,
 )
@@ -86,6 +88,22 @@ class Clause:
     # the places the negated head was given ("not the toilet in the WC, …")
     negated_head_places: list[Constraint] = field(default_factory=list)
     viewpoint: Viewpoint | None = None
+
+
+def _as_placements(head: NP, cons: list[Constraint]) -> list[Constraint]:
+    """A contrasting "one in the middle" after a head placed in its room ("the table in the
+    corner, not the one in the centre") means the middle of the room, not of a row."""
+    if not any(isinstance(c, PlacementConstraint) for c in head.constraints):
+        return cons
+    return [
+        PlacementConstraint(where="centre", negated=c.negated, weight=c.weight, text=c.text)
+        if isinstance(c, Superlative)
+        and c.measure == "middle"
+        and c.landmark is None
+        and c.ordinal is None
+        else c
+        for c in cons
+    ]
 
 
 def _same_kind(out: Clause, np: NP) -> bool:
@@ -678,7 +696,7 @@ class ClauseParser(Grammar):
         vague = (GENERIC, GENERIC_AREA, VAGUE)
         if np.kind == ONE or (np.kind in (GENERIC, VAGUE) and head.kind in vague):
             cons = [replace(c, negated=not c.negated) if neg else c for c in np.constraints]
-            head.constraints += cons
+            head.constraints += _as_placements(head, cons)
         elif neg and np.kind == OBJECT and np.labels and prev_except and not _related(head, np):
             # "a pen from anywhere apart from Jake's desk": a place ruled out
             head.constraints.append(

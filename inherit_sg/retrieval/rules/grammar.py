@@ -44,6 +44,7 @@ from inherit_sg.retrieval.rules.phrase import (
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab import rooms as room_vocab
+from inherit_sg.nlp import lemma_phrase
 from inherit_sg.vocab.lexicon import lexicon
 
 # Prepositions that put the target in a room or area ("in", "inside", "within", "at");
@@ -155,8 +156,11 @@ class Grammar(Cursor):
                 np.superlative = tok.tags["super"]
             elif tok.has("side") and not self.at("of", k=1):
                 np.direction = tok.tags["side"]  # "the leftmost chair"
-            elif tok.has("dir") and tok.tags["dir"] in ("left", "right") and self._head_follows(1):
-                np.direction = tok.tags["dir"]  # "the left chair", "the right one"
+            elif tok.has("dir") and tok.tags["dir"] in ("left", "right") and (
+                self._head_follows(1) or (count and self._phrase_ends(1))
+            ):
+                # "the left chair", "the right one"; "…, not the right" (the one on it)
+                np.direction = tok.tags["dir"]
             elif tok.has("middle") and self._head_follows(1) and not self.at("floor_noun", k=1):
                 np.superlative = "middle"  # "the middle chair", "the centre one"
             elif tok.has("shade") and self.at("colour", k=1):
@@ -176,6 +180,10 @@ class Grammar(Cursor):
             self.advance()
             count += 1
         return count
+
+    def _phrase_ends(self, k: int) -> bool:
+        """Nothing, or a clause break, follows ``k`` tokens ahead."""
+        return self.peek(k) is None or self.at("comma", "and", "but", "or", k=k)
 
     def _head_follows(self, k: int) -> bool:
         """A noun, "one" (also "one of the") or an adjective then a noun follows ``k``
@@ -914,7 +922,10 @@ class Grammar(Cursor):
         # nightstand") describes the whole object, not its part
         np.constraints += [c for c in lm.constraints if not isinstance(c, AttributeConstraint)]
         np.places += lm.places
-        label = lm.labels[0] if lm.labels else lm.words[-1]
+        # a part keeps its own word ("a white frame", not the painting "frame" may name)
+        word_here = lemma_phrase(lm.words[-1]) if lm.words else ""
+        own = word_here and any(object_vocab.is_part(word_here, t) for t in (*np.labels, None))
+        label = word_here if own else (lm.labels[0] if lm.labels else lm.words[-1])
         value = " ".join([*values, label])
         self.notes.append(f"'{word} {lm.noun}' is a part of the target, not an object")
         return AttributeConstraint(
