@@ -178,8 +178,12 @@ class IsgReader:
         if not depth_path.is_file():
             raise FrameError(f"frame {frame_id!r}: missing depth image {depth_path}")
         depth_raw = self._image(depth_path, cv2.IMREAD_UNCHANGED)
-        if depth_raw.ndim != 2:
-            raise FrameError(f"{depth_path}: depth must be a single-channel uint16 PNG")
+        if depth_raw.ndim != 2 or depth_raw.dtype != np.uint16:
+            # an 8-bit PNG would read as depths of at most 0.26 m: refuse it
+            raise FrameError(
+                f"{depth_path}: depth must be a single-channel uint16 PNG, got "
+                f"{depth_raw.dtype} with shape {depth_raw.shape}"
+            )
         depth = depth_raw.astype(np.float32) / np.float32(self.intrinsics.depth_scale)
         instances = None
         labels: dict[int, str] = {}

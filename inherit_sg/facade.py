@@ -300,9 +300,15 @@ def build_map(
     from inherit_sg.mapping.orchestrator import Mapper
     from inherit_sg.mapping.sessions import new_session
 
+    if max_frames is not None and max_frames < 1:
+        raise InputError(f"max_frames must be at least 1, got {max_frames}")
     cfg = config or load_config()
     source = open_dataset(dataset, fmt)
+    if len(source) == 0:
+        raise InputError(f"dataset {dataset} has no frames (is its pose list empty?)")
     n_frames = len(source) if max_frames is None else min(len(source), max_frames)
+    frames = iter(source)
+    first = next(frames)  # a dataset whose frames cannot be read fails before a map is made
     if total is not None:
         total(n_frames)
     path = Path(map_dir)
@@ -317,7 +323,7 @@ def build_map(
         )
         store.upsert_session(session)
         mapper = Mapper(store, cfg, session, progress=progress)
-        summary = mapper.run(itertools.islice(iter(source), n_frames))
+        summary = mapper.run(itertools.islice(itertools.chain([first], frames), n_frames))
         pictures = write_bev_pictures(mapper, path)
     out = summary.to_dict()
     out["map"] = str(path)

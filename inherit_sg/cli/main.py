@@ -115,7 +115,7 @@ def cypher(
         list[str] | None,
         typer.Option("--param", "-p", help="Query parameter NAME=JSON (repeatable)."),
     ] = None,
-    max_rows: Annotated[int, typer.Option(help="Stop after this many rows.")] = 1000,
+    max_rows: Annotated[int, typer.Option(min=1, help="Stop after this many rows.")] = 1000,
     timeout: Annotated[
         float | None, typer.Option(min=0.001, help="Interrupt the query after SECONDS.")
     ] = None,

@@ -27,7 +27,7 @@ def build(
         str, typer.Option("--format", "-f", help="auto, isg, replica, scannet, tum or hm3d.")
     ] = "auto",
     session: Annotated[str | None, typer.Option(help="Session name (default session-N).")] = None,
-    max_frames: Annotated[int | None, typer.Option(help="Only the first N frames.")] = None,
+    max_frames: Annotated[int | None, typer.Option(min=1, help="Only the first N frames.")] = None,
     config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
     overrides: Annotated[
         list[str] | None,

@@ -157,6 +157,8 @@ class Intrinsics:
             )
         except KeyError as exc:
             raise FrameError(f"intrinsics missing key {exc.args[0]!r}") from None
+        except (TypeError, ValueError) as exc:  # "fx": "abc", "width": null
+            raise FrameError(f"intrinsics values must be numbers ({exc})") from None
 
 
 @dataclass(frozen=True)

@@ -110,6 +110,8 @@ def is_map_dir(path: Path) -> bool:
 def read_map_info(path: Path) -> MapInfo:
     """Read ``<path>/map.json``; MapNotFoundError when ``path`` is not a map."""
     file = path / MAP_JSON
+    if path.exists() and not path.is_dir():
+        raise MapNotFoundError(f"{path} is a file, not a map directory")
     if not path.is_dir():
         raise MapNotFoundError(f"map {path} does not exist")
     if not file.is_file():

@@ -102,6 +102,7 @@ class MapStore:
         if root.exists() and not root.is_dir():
             raise MapError(f"cannot create map {root}: it is a file")
         root.mkdir(parents=True, exist_ok=True)
+        had_lock_file = (root / LOCK_FILE).exists()
         lock = WriterLock(root / LOCK_FILE, root)
         lock.acquire(cfg.store.lock_timeout_s)
         try:
@@ -117,6 +118,8 @@ class MapStore:
             write_map_info(root, info)  # last: from now on the directory is a map
         except BaseException:
             lock.release()
+            if not had_lock_file and not is_map_dir(root):
+                (root / LOCK_FILE).unlink(missing_ok=True)  # a refused create leaves nothing
             raise
         return store
 

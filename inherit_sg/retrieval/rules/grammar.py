@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from inherit_sg.nlp import lemma_phrase
 from inherit_sg.retrieval.constraints import (
     AreaConstraint,
     AttributeConstraint,
@@ -44,7 +45,6 @@ from inherit_sg.retrieval.rules.phrase import (
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab import rooms as room_vocab
-from inherit_sg.nlp import lemma_phrase
 from inherit_sg.vocab.lexicon import lexicon
 
 # Prepositions that put the target in a room or area ("in", "inside", "within", "at");
@@ -156,8 +156,10 @@ class Grammar(Cursor):
                 np.superlative = tok.tags["super"]
             elif tok.has("side") and not self.at("of", k=1):
                 np.direction = tok.tags["side"]  # "the leftmost chair"
-            elif tok.has("dir") and tok.tags["dir"] in ("left", "right") and (
-                self._head_follows(1) or (count and self._phrase_ends(1))
+            elif (
+                tok.has("dir")
+                and tok.tags["dir"] in ("left", "right")
+                and (self._head_follows(1) or (count and self._phrase_ends(1)))
             ):
                 # "the left chair", "the right one"; "…, not the right" (the one on it)
                 np.direction = tok.tags["dir"]

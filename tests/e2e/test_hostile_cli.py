@@ -1,0 +1,107 @@
+"""Bad input to the CLI, as a careless or hostile user gives it: every case ends with a
+clear error that names what is wrong, no traceback, and nothing left behind."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import cv2
+import numpy as np
+import pytest
+
+from ingest.synthetic.generate import generate_house, write_dataset
+
+CLI = [sys.executable, "-m", "inherit_sg.cli.main"]
+
+
+def run(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*CLI, *args], capture_output=True, text=True, timeout=300)
+
+
+def refused(proc: subprocess.CompletedProcess[str], needle: str) -> None:
+    """A non-zero exit whose message names the problem, without a traceback."""
+    out = proc.stdout + proc.stderr
+    assert proc.returncode != 0, out
+    assert "Traceback" not in out, out
+    assert needle.lower() in out.lower(), out
+
+
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("hostile") / "walk"
+    write_dataset(generate_house(3, 1, 4), out, width=160, height=120, workers=1, max_frames=3)
+    return out
+
+
+def variant(walk: Path, tmp_path: Path, name: str) -> Path:
+    out = tmp_path / name
+    shutil.copytree(walk, out)
+    return out
+
+
+def test_intrinsics_that_are_not_numbers(walk: Path, tmp_path: Path) -> None:
+    data = variant(walk, tmp_path, "fx")
+    intr = json.loads((data / "intrinsics.json").read_text())
+    (data / "intrinsics.json").write_text(json.dumps({**intr, "fx": "abc"}))
+    refused(run("map", "build", str(data), "--map", str(tmp_path / "m")), "must be numbers")
+    assert not (tmp_path / "m").exists()
+
+
+def test_an_8_bit_depth_image_is_not_read_as_metres(walk: Path, tmp_path: Path) -> None:
+    data = variant(walk, tmp_path, "d8")
+    for path in (data / "frames").glob("*.depth.png"):
+        depth = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+        cv2.imwrite(str(path), (depth // 256).astype(np.uint8))
+    refused(run("map", "build", str(data), "--map", str(tmp_path / "m")), "uint16")
+    assert not (tmp_path / "m").exists(), "a map was made from frames that cannot be read"
+
+
+def test_an_empty_walk_and_no_frames(walk: Path, tmp_path: Path) -> None:
+    data = variant(walk, tmp_path, "empty")
+    (data / "poses.txt").write_text("")
+    refused(run("map", "build", str(data), "--map", str(tmp_path / "m")), "no frames")
+    assert not (tmp_path / "m").exists()
+    for n in ("0", "-1"):
+        args = ("map", "build", str(walk), "--map", str(tmp_path / "m"), "--max-frames", n)
+        refused(run(*args), "--max-frames")
+    assert not (tmp_path / "m").exists()
+
+
+def test_a_pose_far_from_the_origin(walk: Path, tmp_path: Path) -> None:
+    data = variant(walk, tmp_path, "far")
+    lines = (data / "poses.txt").read_text().splitlines()
+    fields = lines[1].split()
+    fields[4] = "1e308"  # the x translation
+    lines[1] = " ".join(fields)
+    (data / "poses.txt").write_text("\n".join(lines) + "\n")
+    refused(run("map", "build", str(data), "--map", str(tmp_path / "m")), "implausible")
+
+
+def test_a_refused_build_leaves_no_lock(walk: Path, tmp_path: Path) -> None:
+    folder = tmp_path / "notes"
+    folder.mkdir()
+    (folder / "todo.txt").write_text("buy milk")
+    refused(run("map", "build", str(walk), "--map", str(folder)), "not empty")
+    assert sorted(p.name for p in folder.iterdir()) == ["todo.txt"]
+
+
+def test_a_file_is_no_map(tmp_path: Path) -> None:
+    note = tmp_path / "a-file.txt"
+    note.write_text("hello")
+    refused(run("info", "--map", str(note)), "is a file")
+    refused(run("cypher", "--map", str(note), "RETURN 1"), "is a file")
+    refused(run("query", "--map", str(note), "the bed"), "is a file")
+
+
+def test_bad_numbers_for_cypher(walk: Path, tmp_path: Path) -> None:
+    m = tmp_path / "m"
+    assert run("map", "build", str(walk), "--map", str(m)).returncode == 0
+    refused(run("cypher", "--map", str(m), "RETURN 1", "--max-rows", "-1"), "--max-rows")
+    refused(run("cypher", "--map", str(m), "RETURN 1", "--timeout", "0"), "--timeout")
+    refused(run("cypher", "--map", str(m), "MATCH (o:Object) SET o.label = 'x'"), "read-only")
+    refused(run("cypher", "--map", str(m), "RETURN 1; RETURN 2"), "one Cypher statement")
+    refused(run("cypher", "--map", str(m), "RETURN $x", "--param", "x"), "NAME=VALUE")
