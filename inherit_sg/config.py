@@ -55,7 +55,11 @@ class EmbedderConfig(_Section):
 class PerceptionConfig(_Section):
     """Perception backends by registry name (DESIGN.md §5)."""
 
-    segmenter: str = "dataset"
+    segmenter: str = Field(
+        "auto",
+        description="auto (a frame's instance masks, else the classical segmenter), "
+        "dataset, classical or sam3",
+    )
     visual_encoder: str = "descriptor"
     describer: str = "offline"
     model_dir: str | None = Field(None, description="local directory for DINOv3/SAM3 weights")

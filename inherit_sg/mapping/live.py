@@ -268,6 +268,11 @@ class LiveSession:
                 "segmenter needs: they add geometry but no objects (send instances + "
                 "instance_labels, or configure perception.segmenter = 'sam3' or 'classical')"
             )
+        unmasked = int(getattr(self.mapper.semantic.segmenter, "unmasked_frames", 0))
+        if unmasked:
+            from inherit_sg.perception.auto_segmenter import UNNAMED_WARNING
+
+            out.append(f"{unmasked} {UNNAMED_WARNING}")
         if self._rejected:
             out.append(
                 f"{len(self._rejected)} frames were left out because the mapper could not "

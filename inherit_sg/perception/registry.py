@@ -77,6 +77,12 @@ def _classical(config: Config) -> Segmenter:
     return ClassicalSegmenter(p.min_mask_pixels, max(p.min_mask_fraction, 0.0005))
 
 
+def _auto(config: Config) -> Segmenter:
+    from inherit_sg.perception.auto_segmenter import AutoSegmenter
+
+    return AutoSegmenter(_dataset(config), _classical(config))
+
+
 def _sam3(config: Config) -> Segmenter:
     from inherit_sg.perception.sam3 import Sam3Segmenter
 
@@ -123,6 +129,7 @@ SEGMENTERS: Registry[Segmenter] = Registry("segmenter")
 VISUAL_ENCODERS: Registry[VisualEncoder] = Registry("visual encoder")
 DESCRIBERS: Registry[Describer] = Registry("describer")
 
+SEGMENTERS.register("auto", _auto)
 SEGMENTERS.register("dataset", _dataset)
 SEGMENTERS.register("classical", _classical)
 SEGMENTERS.register("sam3", _sam3)

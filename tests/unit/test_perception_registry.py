@@ -22,6 +22,7 @@ from inherit_sg.perception import (
     create_visual_encoder,
     register_segmenter,
 )
+from inherit_sg.perception.auto_segmenter import AutoSegmenter
 from inherit_sg.perception.classical_segmenter import ClassicalSegmenter
 from inherit_sg.perception.dataset_segmenter import DatasetSegmenter
 from inherit_sg.perception.describer import FallbackDescriber, TemplateDescriber
@@ -37,7 +38,9 @@ def test_defaults_build_the_offline_backends() -> None:
     cfg = Config()
     seg = create_segmenter(cfg)
     enc = create_visual_encoder(cfg)
-    assert isinstance(seg, DatasetSegmenter) and isinstance(seg, Segmenter)
+    assert isinstance(seg, AutoSegmenter) and isinstance(seg, Segmenter)
+    assert isinstance(seg.with_masks, DatasetSegmenter)
+    assert isinstance(seg.without_masks, ClassicalSegmenter)
     assert isinstance(enc, DescriptorEncoder) and isinstance(enc, VisualEncoder)
     assert enc.dim == cfg.store.visual_dim and enc.image_dim == cfg.store.image_feature_dim
     assert isinstance(create_describer(cfg), TemplateDescriber)
