@@ -161,7 +161,12 @@ class LiveSession:
             if self.intrinsics is None:
                 self.intrinsics = intr
             self._received += 1
-            if instances is None and blind_without_instances(self.mapper.semantic.segmenter):
+            segmenter = self.mapper.semantic.segmenter
+            if (
+                instances is None
+                and blind_without_instances(segmenter)
+                and not getattr(segmenter, "falls_back", False)
+            ):
                 self._blind += 1
             return FrameReceipt(index, *self._counters(), self._frames.qsize())
 
@@ -272,7 +277,7 @@ class LiveSession:
         if unmasked:
             from inherit_sg.perception.auto_segmenter import UNNAMED_WARNING
 
-            out.append(f"{unmasked} {UNNAMED_WARNING}")
+            out.append(f"{unmasked} keyframes came without instance masks: {UNNAMED_WARNING}")
         if self._rejected:
             out.append(
                 f"{len(self._rejected)} frames were left out because the mapper could not "

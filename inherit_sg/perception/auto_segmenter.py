@@ -20,9 +20,9 @@ from inherit_sg.perception.base import Detection, Segmenter
 log = logging.getLogger(__name__)
 
 UNNAMED_WARNING = (
-    "frames without instance masks: objects are found by depth and colour (the classical "
-    "segmenter) and stay unnamed until a model is configured; set perception.segmenter = "
-    "'sam3' and perception.model_dir to a local SAM3 checkpoint to name them"
+    "objects are found by depth and colour (the classical segmenter) and stay unnamed "
+    "until a model is configured; set perception.segmenter = 'sam3' and "
+    "perception.model_dir to a local SAM3 checkpoint to name them"
 )
 
 
@@ -30,8 +30,11 @@ class AutoSegmenter:
     """Dataset masks when a frame carries them, the classical segmenter otherwise."""
 
     name = "auto"
-    # frames without masks are segmented too: they are evidence that a place is empty
-    needs_instances = False
+    # A frame without masks is segmented, but it is no evidence that a place is empty: a
+    # named object mapped there may come back as an unnamed "object" that does not match.
+    needs_instances = True
+    # ... and such frames are not blind: they are looked at by the fallback segmenter
+    falls_back = True
 
     def __init__(self, with_masks: Segmenter, without_masks: Segmenter) -> None:
         self.with_masks = with_masks
@@ -43,6 +46,6 @@ class AutoSegmenter:
         if frame.instances is not None:
             return self.with_masks.segment(frame, prompts)
         if self.unmasked_frames == 0:
-            log.warning("%s", UNNAMED_WARNING)
+            log.warning("frames without instance masks: %s", UNNAMED_WARNING)
         self.unmasked_frames += 1
         return self.without_masks.segment(frame, prompts)

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from inherit_sg.errors import MapError
 from inherit_sg.mapping.relations import NEAR_GAP
 from inherit_sg.retrieval.graph_checks import Landmarks
 from inherit_sg.retrieval.plan import NodeSpec, Step
@@ -142,7 +143,11 @@ class CandidateGenerator:
                     out.text_sim[node_id] = max(out.text_sim.get(node_id, 0.0), value)
         elif step.op == "fulltext":
             assert step.index is not None and step.query_text
-            hits = self.store.text_search(step.index, step.query_text, TEXT_K)
+            try:
+                hits = self.store.text_search(step.index, step.query_text, TEXT_K)
+            except MapError as exc:  # a stale or damaged derived index: go on without it
+                out.notes.append(f"{step.spec}: full-text search skipped ({exc.message})")
+                hits = []
             top = max((s for _, s in hits), default=0.0)
             for node_id, score in hits:
                 if top > 0.0 and _known(self.snap, layer, node_id):

@@ -4,6 +4,7 @@ the search index database, both with clear errors for locked or broken maps."""
 from __future__ import annotations
 
 import contextlib
+import logging
 import shutil
 from pathlib import Path
 
@@ -23,6 +24,9 @@ CREATE_LEFTOVERS = {
     LANCE_DIR,
     LOCK_FILE,
 }
+
+
+log = logging.getLogger(__name__)
 
 
 def clear_leftovers(root: Path) -> None:
@@ -76,7 +80,22 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
     writable store whose index cannot be opened starts a fresh one (it is derived)."""
     file = root / INDEX_FILE
     if not write:
-        return SearchIndex(file, info.dims, read_only=True) if file.exists() else None
+        if not file.exists():
+            return None
+        try:
+            return SearchIndex(file, info.dims, read_only=True)
+        except RuntimeError as exc:
+            if "lock" in str(exc).lower():
+                raise MapLockedError(
+                    f"map {root} is open in another process ({INDEX_FILE} is locked)"
+                ) from None
+            # derived data: the map answers without it (exact search over the graph)
+            log.warning(
+                "map %s: %s is damaged (%s); searching without it until the map is opened "
+                "for writing (inherit-sg map build, or a live session), which rebuilds it",
+                root, INDEX_FILE, str(exc).splitlines()[0][:200],
+            )  # fmt: skip
+            return None
     try:
         return SearchIndex(file, info.dims, read_only=False)
     except RuntimeError as exc:

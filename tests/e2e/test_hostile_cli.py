@@ -105,3 +105,23 @@ def test_bad_numbers_for_cypher(walk: Path, tmp_path: Path) -> None:
     refused(run("cypher", "--map", str(m), "MATCH (o:Object) SET o.label = 'x'"), "read-only")
     refused(run("cypher", "--map", str(m), "RETURN 1; RETURN 2"), "one Cypher statement")
     refused(run("cypher", "--map", str(m), "RETURN $x", "--param", "x"), "NAME=VALUE")
+
+
+def test_a_truncated_search_index_is_derived_data(walk: Path, tmp_path: Path) -> None:
+    m = tmp_path / "m"
+    assert run("map", "build", str(walk), "--map", str(m)).returncode == 0
+    index = m / "index.kuzu"
+    with open(index, "r+b") as fh:
+        fh.truncate(index.stat().st_size // 2)
+    for args in (
+        ("info", "--map", str(m)),
+        ("cypher", "--map", str(m), "MATCH (o:Object) RETURN count(o)"),
+        ("query", "--map", str(m), "the bed", "--no-verify"),
+    ):
+        proc = run(*args)
+        out = proc.stdout + proc.stderr
+        assert proc.returncode == 0 and "Traceback" not in out, out
+    assert "index.kuzu is damaged" in run("info", "--map", str(m)).stderr
+    # opening the map for writing rebuilds it
+    assert run("map", "build", str(walk), "--map", str(m), "--session", "again").returncode == 0
+    assert "damaged" not in run("info", "--map", str(m)).stderr
