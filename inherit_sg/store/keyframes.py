@@ -11,14 +11,15 @@ by LanceDB's scan of unindexed data until ``optimize`` folds them in.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import functools
+from collections.abc import Callable, Sequence
 from datetime import timedelta
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
-from inherit_sg.errors import InputError
+from inherit_sg.errors import InheritSGError, InputError, MapCorruptError
 from inherit_sg.model import Keyframe
 from inherit_sg.store.embeddings import as_vector
 
@@ -28,6 +29,31 @@ if TYPE_CHECKING:
 TABLE = "keyframes"
 INDEX_MIN_ROWS = 10_000
 _COMPACT_AFTER_FRAGMENTS = 32
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _clear_damage(method: F) -> F:
+    """Turn what LanceDB raises on a damaged table (a deleted or truncated data file) into
+    a MapCorruptError that names the table and how to recover."""
+
+    @functools.wraps(method)
+    def wrapper(self: KeyframeBlobs, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return method(self, *args, **kwargs)
+        except InheritSGError:
+            raise
+        except Exception as exc:  # lance and arrow errors have no common base
+            first = str(exc).splitlines()[0][:300] if str(exc) else type(exc).__name__
+            raise MapCorruptError(
+                f"the keyframe table {self.path / (TABLE + '.lance')} is damaged ({first}). "
+                "The scene graph is intact: `inherit-sg export --map MAP --no-images OUT.json` "
+                "then `inherit-sg import OUT.json --map NEW` makes a map without keyframe "
+                "pictures"
+            ) from None
+
+    return wrapper  # type: ignore[return-value]
 
 
 def _quote(ids: Sequence[str]) -> str:
@@ -98,14 +124,17 @@ class KeyframeBlobs:
             schema=self.schema(),
         )
 
+    @_clear_damage
     def version(self) -> int:
         """Current table version (to roll back a failed multi-store write)."""
         return int(self._tbl().version)  # writable only
 
+    @_clear_damage
     def restore(self, version: int) -> None:
         """Make ``version`` the current state again."""
         self._tbl().restore(version)
 
+    @_clear_damage
     def upsert(self, keyframes: Sequence[Keyframe]) -> None:
         """Insert or replace rows by keyframe id."""
         if not keyframes:
@@ -113,7 +142,10 @@ class KeyframeBlobs:
         latest = list({k.id: k for k in keyframes}.values())
         tbl = self._tbl()
         rows = self._rows(latest)
-        tbl.merge_insert("id").when_matched_update_all().when_not_matched_insert_all().execute(rows)
+        # a keyframe imported without its feature keeps a null one (not a "bad vector")
+        tbl.merge_insert("id").when_matched_update_all().when_not_matched_insert_all().execute(
+            rows, on_bad_vectors="null"
+        )
         self._maintain(tbl)
 
     def _maintain(self, tbl: Any) -> None:
@@ -126,11 +158,13 @@ class KeyframeBlobs:
                 metric="cosine", vector_column_name="feature", index_type="IVF_HNSW_SQ"
             )
 
+    @_clear_damage
     def delete(self, ids: Sequence[str]) -> None:
         """Delete rows by id (absent ones are ignored)."""
         for start in range(0, len(ids), 500):
             self._tbl().delete(f"id IN ({_quote(ids[start : start + 500])})")
 
+    @_clear_damage
     def ids(self) -> set[str]:
         """All stored keyframe ids."""
         tbl = self._tbl()
@@ -142,6 +176,7 @@ class KeyframeBlobs:
         found = tbl.search().select(["id"]).limit(n).to_arrow()
         return {str(i) for i in found.column("id").to_pylist()}
 
+    @_clear_damage
     def get(self, keyframe_id: str) -> tuple[bytes | None, np.ndarray | None] | None:
         """(jpeg, feature) of one keyframe, or None when it has no row."""
         tbl = self._tbl()
@@ -160,6 +195,7 @@ class KeyframeBlobs:
         feat = found[0]["feature"]
         return found[0]["jpeg"], (np.asarray(feat, dtype=np.float32) if feat is not None else None)
 
+    @_clear_damage
     def search(self, vector: Sequence[float] | np.ndarray, k: int) -> list[tuple[str, float]]:
         """(id, cosine distance) of the ``k`` nearest keyframe features."""
         query = as_vector(vector, self.feature_dim, "keyframe query vector")

@@ -125,3 +125,22 @@ def test_a_truncated_search_index_is_derived_data(walk: Path, tmp_path: Path) ->
     # opening the map for writing rebuilds it
     assert run("map", "build", str(walk), "--map", str(m), "--session", "again").returncode == 0
     assert "damaged" not in run("info", "--map", str(m)).stderr
+
+
+def test_a_deleted_keyframe_file_is_named_with_its_way_out(walk: Path, tmp_path: Path) -> None:
+    m = tmp_path / "m"
+    assert run("map", "build", str(walk), "--map", str(m)).returncode == 0
+    found = run("cypher", "--map", str(m), "MATCH (o:Object) RETURN o.label LIMIT 1", "--json")
+    label = json.loads(found.stdout)["rows"][0][0]
+    data = next((m / "lance" / "keyframes.lance" / "data").glob("*.lance"))
+    data.unlink()
+    proc = run("query", "--map", str(m), f"the {label}")
+    refused(proc, "keyframe table")
+    assert "export" in proc.stdout + proc.stderr
+    # the way out it names: the graph without pictures, into a new map that answers
+    out = tmp_path / "m.json"
+    assert run("export", "--map", str(m), "--no-images", str(out)).returncode == 0
+    assert run("import", str(out), "--map", str(tmp_path / "new")).returncode == 0
+    again = run("query", "--map", str(tmp_path / "new"), f"the {label}", "--json")
+    assert again.returncode == 0, again.stderr
+    assert json.loads(again.stdout)["answer"] is not None
