@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 import kuzu
 import numpy as np
 
-from inherit_sg.errors import InputError
+from inherit_sg.errors import InputError, MapCorruptError
 from inherit_sg.store.indexes import VectorIndex
 from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, rows, run
 
@@ -102,6 +102,13 @@ def read_vectors(
         return [], np.zeros((0, dim), dtype=np.float32)
     out_ids = [str(x) for x in table.column("id").to_pylist()]
     flat = table.column("vec").combine_chunks().flatten().to_numpy(zero_copy_only=False)
+    if flat.size != len(out_ids) * dim:
+        stored = flat.size // max(1, len(out_ids))
+        raise MapCorruptError(
+            f"{spec.table} holds vectors of {stored} numbers, but map.json says {dim} "
+            f"({spec.dim_key}): set {spec.dim_key} to {stored} in map.json, or restore map.json "
+            "from a backup"
+        )
     return out_ids, np.asarray(flat, dtype=np.float32).reshape(len(out_ids), dim)
 
 

@@ -144,3 +144,11 @@ def test_a_deleted_keyframe_file_is_named_with_its_way_out(walk: Path, tmp_path:
     again = run("query", "--map", str(tmp_path / "new"), f"the {label}", "--json")
     assert again.returncode == 0, again.stderr
     assert json.loads(again.stdout)["answer"] is not None
+
+
+def test_map_json_dimensions_that_do_not_fit_the_vectors(walk: Path, tmp_path: Path) -> None:
+    m = tmp_path / "m"
+    assert run("map", "build", str(walk), "--map", str(m)).returncode == 0
+    info = json.loads((m / "map.json").read_text())
+    (m / "map.json").write_text(json.dumps({**info, "visual_dim": 128}))
+    refused(run("query", "--map", str(m), "the door"), "set visual_dim to 256")
