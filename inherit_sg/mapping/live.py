@@ -238,6 +238,14 @@ class LiveSession:
                     self._fail(exc)
                 return
 
+    def _record_failed(self) -> None:
+        """Mark the session record failed (best effort: the store may be what failed)."""
+        self.session.state = "failed"
+        try:
+            self.store.upsert_session(self.session)
+        except Exception as exc:  # the failure is reported already; this is a footnote
+            log.warning("live session %s: could not record the failure: %s", self.id, exc)
+
     # ------------------------------------------------------------------ status
     def status(self) -> dict[str, Any]:
         """Counters of the session (JSON-able)."""
@@ -309,6 +317,7 @@ class LiveSession:
         except BaseException as exc:
             with self._lock:
                 self._fail(exc, force=True)
+            self._record_failed()
             if isinstance(exc, InheritSGError):
                 raise
             raise InheritSGError(f"live session {self.id} failed: {self.error}") from exc

@@ -333,6 +333,7 @@ class Mapper:
             if oid in self.objects.objects:
                 self.objects.objects[oid].dirty = True
         self.session.finished = time.time()
+        self.session.state = "finished"
         self._updates["final"] += 1
         self.global_update("final update at the end of the session")
         record_session_vocabulary(

@@ -218,3 +218,5 @@ class Session:
     dataset: str = ""
     frames: int = 0
     keyframes: int = 0
+    # "" while it runs; "finished", "failed", or "interrupted" (killed before it ended)
+    state: str = ""

@@ -85,6 +85,7 @@ _COLUMNS: dict[str, dict[str, str]] = {
         "dataset": "str",
         "frames": "int",
         "keyframes": "int",
+        "state": "str",
     },
 }
 
@@ -334,6 +335,7 @@ def session_row(s: Session) -> dict[str, Any]:
         "dataset": s.dataset,
         "frames": int(s.frames),
         "keyframes": int(s.keyframes),
+        "state": s.state or None,
     }
 
 
@@ -347,6 +349,8 @@ def session_from_row(r: dict[str, Any]) -> Session:
         dataset=r["dataset"] or "",
         frames=int(r["frames"] or 0),
         keyframes=int(r["keyframes"] or 0),
+        # sessions written before schema 3 have no state: a finished time says it ended
+        state=r.get("state") or ("finished" if r["finished"] is not None else ""),
     )
 
 

@@ -163,12 +163,24 @@ class MapStore:
             if write and not create:
                 store._sync_map_json(latest_version())
                 store._refresh_text()  # finishes a rebuild a crash cut short
+                store._mark_interrupted()
         except BaseException:
             if index is not None:
                 index.close()
             graph.close()
             raise
         return store
+
+    def _mark_interrupted(self) -> None:
+        """Sessions that never ended were cut short (this open holds the writer lock, so
+        none of them still runs): record them as interrupted."""
+        cut = [s for s in self.sessions() if not s.state and s.finished is None]
+        for session in cut:
+            session.state = "interrupted"
+            self.upsert_session(session)
+            log.warning(
+                "map %s: session %s (%s) was interrupted", self.path, session.id, session.name
+            )
 
     def close(self) -> None:
         """Bring the full-text copies up to date (writers), close both databases

@@ -117,6 +117,7 @@ def test_second_session_appends_and_marks_missing(
         sessions = store.sessions()
         after = {o.id: o for o in store.load_graph().objects()}
     assert [s.name for s in sessions] == ["session-1", "second visit"]
+    assert [s.state for s in sessions] == ["finished", "finished"]
     # re-observation updates existing nodes instead of duplicating them
     assert len(after) <= len(before) * 1.1
     kept = [i for i in before if i in after and after[i].status is ObjectStatus.ACTIVE]
@@ -142,7 +143,13 @@ def test_interrupted_build_leaves_an_openable_map(house_dir: Path, tmp_path: Pat
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=30)
     assert (map_dir / "geometry.npz").is_file(), "no batch was committed before the deadline"
+    with MapStore.open(map_dir) as store:
+        # a read-only open changes nothing: the killed session still shows no end
+        assert [s.state for s in store.sessions()] == [""]
     with MapStore.open(map_dir, write=True) as store:  # the lock of the dead writer is stale
+        # the next writable open records the killed session as interrupted
+        (killed,) = store.sessions()
+        assert killed.state == "interrupted" and killed.finished is None
         graph = store.load_graph()
         assert len(list(graph.objects())) > 0
         for obj in graph.objects():
