@@ -349,8 +349,7 @@ def session_from_row(r: dict[str, Any]) -> Session:
         dataset=r["dataset"] or "",
         frames=int(r["frames"] or 0),
         keyframes=int(r["keyframes"] or 0),
-        # sessions written before schema 3 have no state: a finished time says it ended
-        state=r.get("state") or ("finished" if r["finished"] is not None else ""),
+        state=r.get("state") or "",  # empty while it runs, and before schema 3
     )
 
 
