@@ -75,6 +75,14 @@ def open_graph(root: Path, info: MapInfo, *, write: bool, create: bool = False) 
     return graph
 
 
+def _raise_if_locked(root: Path, exc: RuntimeError) -> None:
+    """MapLockedError when Kuzu refused the search index because another process has it."""
+    if "lock" in str(exc).lower():
+        raise MapLockedError(
+            f"map {root} is open in another process ({INDEX_FILE} is locked)"
+        ) from None
+
+
 def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
     """The search index database; None for a read-only store when it is missing. A
     writable store whose index cannot be opened starts a fresh one (it is derived)."""
@@ -85,10 +93,7 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
         try:
             return SearchIndex(file, info.dims, read_only=True)
         except RuntimeError as exc:
-            if "lock" in str(exc).lower():
-                raise MapLockedError(
-                    f"map {root} is open in another process ({INDEX_FILE} is locked)"
-                ) from None
+            _raise_if_locked(root, exc)
             # derived data: the map answers without it (exact search over the graph)
             log.warning(
                 "map %s: %s is damaged (%s); searching without it until the map is opened "
@@ -99,10 +104,7 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
     try:
         return SearchIndex(file, info.dims, read_only=False)
     except RuntimeError as exc:
-        if "lock" in str(exc).lower():
-            raise MapLockedError(
-                f"map {root} is open in another process ({INDEX_FILE} is locked)"
-            ) from None
+        _raise_if_locked(root, exc)
         for path in (file, file.with_name(file.name + ".wal")):
             with contextlib.suppress(FileNotFoundError):
                 path.unlink()
