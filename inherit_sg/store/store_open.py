@@ -40,12 +40,21 @@ def clear_leftovers(root: Path) -> None:
             leftover.unlink(missing_ok=True)
 
 
+# What Kuzu raises when it cannot open a file: RuntimeError for its own checks (a lock, a
+# bad header), and whatever a C++ failure maps to on a garbled file (std::bad_alloc as
+# MemoryError, std::length_error as ValueError, …).
+_KUZU_OPEN_ERRORS = (RuntimeError, MemoryError, ValueError, IndexError, OverflowError)
+
+
 def _open_kuzu(root: Path, name: str, read_only: bool) -> KuzuGraph:
     try:
         return KuzuGraph(root / name, read_only=read_only)
-    except RuntimeError as exc:
+    except _KUZU_OPEN_ERRORS as exc:
         if "lock" not in str(exc).lower():
-            raise MapCorruptError(f"map {root}: cannot open {name}: {exc}") from None
+            raise MapCorruptError(
+                f"map {root}: cannot open {name} ({exc}); the file is damaged: restore the map "
+                "from a backup, or import an earlier export (inherit-sg import FILE --map NEW)"
+            ) from None
         if is_locked(root / LOCK_FILE):
             raise locked_error(root, root / LOCK_FILE) from None
         raise MapLockedError(f"map {root} is open in another process ({name} is locked)") from None
@@ -75,7 +84,7 @@ def open_graph(root: Path, info: MapInfo, *, write: bool, create: bool = False) 
     return graph
 
 
-def _raise_if_locked(root: Path, exc: RuntimeError) -> None:
+def _raise_if_locked(root: Path, exc: Exception) -> None:
     """MapLockedError when Kuzu refused the search index because another process has it."""
     if "lock" in str(exc).lower():
         raise MapLockedError(
@@ -92,7 +101,7 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
             return None
         try:
             return SearchIndex(file, info.dims, read_only=True)
-        except RuntimeError as exc:
+        except _KUZU_OPEN_ERRORS as exc:
             _raise_if_locked(root, exc)
             # derived data: the map answers without it (exact search over the graph)
             log.warning(
@@ -103,7 +112,7 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
             return None
     try:
         return SearchIndex(file, info.dims, read_only=False)
-    except RuntimeError as exc:
+    except _KUZU_OPEN_ERRORS as exc:
         _raise_if_locked(root, exc)
         for path in (file, file.with_name(file.name + ".wal")):
             with contextlib.suppress(FileNotFoundError):

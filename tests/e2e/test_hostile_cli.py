@@ -152,3 +152,27 @@ def test_map_json_dimensions_that_do_not_fit_the_vectors(walk: Path, tmp_path: P
     info = json.loads((m / "map.json").read_text())
     (m / "map.json").write_text(json.dumps({**info, "visual_dim": 128}))
     refused(run("query", "--map", str(m), "the door"), "set visual_dim to 256")
+
+
+def test_garbled_database_files(walk: Path, tmp_path: Path) -> None:
+    import os
+
+    m = tmp_path / "m"
+    assert run("map", "build", str(walk), "--map", str(m)).returncode == 0
+    garbled = tmp_path / "g"
+    shutil.copytree(m, garbled)
+
+    def garble(path: Path) -> None:  # keep the header, scramble the pages after it
+        size = path.stat().st_size
+        with open(path, "r+b") as fh:
+            fh.seek(4096)
+            fh.write(os.urandom(size - 8192))
+
+    # the derived search index: the map answers without it, and a writable open rebuilds it
+    garble(m / "index.kuzu")
+    proc = run("info", "--map", str(m))
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert "index.kuzu is damaged" in proc.stderr
+    # the scene graph: a clear error with the way back
+    garble(garbled / "graph.kuzu")
+    refused(run("info", "--map", str(garbled)), "inherit-sg import")
