@@ -36,6 +36,27 @@ def size_class(extent: tuple[float, float, float]) -> str:
     return "medium"
 
 
+# The label of a thing no model has named (the classical segmenter's masks).
+UNNAMED = "object"
+
+
+def shape_word(extent: tuple[float, float, float]) -> str:
+    """How a box looks, from its extent (x, y, z up, metres): "flat" (a low slab: a rug, a
+    tray), "tall" (a column: a lamp, a cabinet), "long" (a bench, a shelf) or "box-like";
+    "" for an extent that says nothing."""
+    if not all(math.isfinite(v) and v > 0 for v in extent):
+        return ""
+    low, high = sorted(extent[:2])
+    height = extent[2]
+    if height < 0.35 * high and height < 0.3:
+        return "flat"
+    if height > 1.8 * high and height > 0.6:
+        return "tall"
+    if high > 2.5 * low:
+        return "long"
+    return "box-like"
+
+
 def _dims(extent: tuple[float, float, float]) -> str:
     def fmt(v: float) -> str:
         return f"{v:.2f}".rstrip("0").rstrip(".") if v < 0.1 else f"{v:.1f}"
@@ -76,8 +97,10 @@ def template_description(
     extent in metres, the room label and a measured material (None to omit it); also
     used to refresh descriptions when fused observations change an object's size, room
     or material, e.g. "a brown wooden table, about 1.2 × 0.8 × 0.75 m, ..."."""
-    label = label.strip().lower() or "object"
-    words = [w for w in (colour if colour != "unknown" else "", _adjective(material)) if w]
+    label = label.strip().lower() or UNNAMED
+    # an unnamed thing is told apart by how it looks: "a tall white object"
+    shape = shape_word(extent) if label == UNNAMED else ""
+    words = [w for w in (shape, colour if colour != "unknown" else "", _adjective(material)) if w]
     noun = " ".join([*words, label])
     parts = [with_article(noun)]
     if all(math.isfinite(v) for v in extent) and max(extent) > 0:

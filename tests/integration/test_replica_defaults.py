@@ -29,3 +29,6 @@ def test_office0_maps_to_objects_with_the_defaults(
         rows = service.cypher("MATCH (o:Object) RETURN o.label, o.description").rows
     assert len(rows) == summary["objects"]
     assert all(label == "object" for label, _ in rows)
+    # unnamed, but told apart by how they look: shape and colour lead the description
+    shapes = ("a flat ", "a tall ", "a long ", "a box-like ")
+    assert all(text.startswith(shapes) for _, text in rows), rows

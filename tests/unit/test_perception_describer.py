@@ -11,6 +11,7 @@ from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
 from inherit_sg.perception.describer import (
     FallbackDescriber,
     TemplateDescriber,
+    shape_word,
     size_class,
     template_description,
 )
@@ -125,3 +126,15 @@ def test_measured_material_is_named_before_the_noun() -> None:
         "a stone vase"
     )
     assert template_description("armchair", "unknown", (0.8, 0.8, 0.9)).startswith("an armchair")
+
+
+def test_an_unnamed_thing_is_described_by_its_shape() -> None:
+    assert shape_word((0.4, 0.4, 1.6)) == "tall"
+    assert shape_word((1.2, 0.8, 0.05)) == "flat"
+    assert shape_word((0.4, 1.8, 0.5)) == "long"
+    assert shape_word((0.4, 0.3, 0.3)) == "box-like"
+    assert shape_word((0.0, 0.3, 0.3)) == "" and shape_word((float("nan"), 1, 1)) == ""
+    text = template_description("object", "white", (0.4, 0.4, 1.6), "office")
+    assert text.startswith("a tall white object, about 0.4 × 0.4 × 1.6 m")
+    # a named thing is told by its name; its shape is left out
+    assert template_description("lamp", "white", (0.4, 0.4, 1.6)).startswith("a white lamp")
