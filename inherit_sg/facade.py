@@ -308,7 +308,9 @@ def build_map(
         raise InputError(f"dataset {dataset} has no frames (is its pose list empty?)")
     n_frames = len(source) if max_frames is None else min(len(source), max_frames)
     frames = iter(source)
-    first = next(frames)  # a dataset whose frames cannot be read fails before a map is made
+    first = next(frames, None)  # a dataset whose frames cannot be read fails before a map
+    if first is None:
+        raise InputError(f"dataset {dataset} yields no frames")
     if total is not None:
         total(n_frames)
     path = Path(map_dir)

@@ -245,13 +245,18 @@ def compound_nearness(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[
     "piano bench") whose first word names a kind the map has: the thing is found by its
     general word (stool) and is likely near that kind (a bar): a weak "near" relation.
     Nothing when the map has the compound's own label or lacks the first word's kind."""
+    asked = [
+        c
+        for c in cons
+        if isinstance(c, LabelConstraint) and not c.negated and any(" " in w for w in c.labels)
+    ]
+    if not asked:  # most requests name no compound: no need to look at the map's labels
+        return ()
     present: set[str] = set()
     for raw in snap.raw_labels():
         present.update({raw.strip().lower(), *canonical_labels(raw)})
     out: list[Constraint] = []
-    for con in cons:
-        if not isinstance(con, LabelConstraint) or con.negated:
-            continue
+    for con in asked:
         if any(label in present for label in con.labels):
             continue
         for label in con.labels:

@@ -3,9 +3,10 @@
 A room is matched by the first of these steps that finds it, and the reason says which:
 
 1. **label**: its label names the type asked for (or another type the same word names
-   as often: "den" is a family room and a TV room, ``also`` in ``rooms.toml``): fully, or when the map inferred the
-   label with little confidence (best type below :data:`LABEL_SURE_P`), a little less
-   (down to :data:`LABEL_LO`), so a confidently labelled room wins a tie;
+   as often: "den" is a family room and a TV room, ``also`` in ``rooms.toml``): fully,
+   or when the map inferred the label with little confidence (best type below
+   :data:`LABEL_SURE_P`), a little less (down to :data:`LABEL_LO`), so a confidently
+   labelled room wins a tie;
 2. **alternatives**: the type is among the room's inferred types (``RoomNode.types``):
    fully when it is the best one, else graded by its probability relative to the best
    (:func:`alternative_sim`), so "the TV room" finds a room labelled "living room" that

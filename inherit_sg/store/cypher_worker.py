@@ -223,10 +223,18 @@ class CypherWorker:
     def close(self) -> None:
         """Stop the child (politely, then by force); later statements are refused."""
         self._closed = True
-        conn, proc = self._conn, self._proc
-        if conn is not None and proc is not None and proc.is_alive():
-            with contextlib.suppress(OSError, ValueError):
-                conn.send(None)
-            proc.join(timeout=2)
-        with self._lock if not self._lock.locked() else contextlib.nullcontext():
+        if not self._lock.acquire(blocking=False):
+            # a statement runs: end its child; that call reaps it and reports the close
+            proc = self._proc
+            if proc is not None and proc.is_alive():
+                proc.kill()
+            return
+        try:
+            conn, proc = self._conn, self._proc
+            if conn is not None and proc is not None and proc.is_alive():
+                with contextlib.suppress(OSError, ValueError):
+                    conn.send(None)
+                proc.join(timeout=2)
             self._stop()
+        finally:
+            self._lock.release()

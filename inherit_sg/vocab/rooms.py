@@ -219,13 +219,8 @@ def also_named(phrase: str) -> tuple[str, ...]:
     """The types besides :func:`room_type` that ``phrase`` names just as well ("den": a
     family room, also a TV room), from the ``also`` lists of ``rooms.toml``; read like
     :func:`room_type` (longest tail, trailing numbers ignored)."""
-    words = _words(phrase)
-    table = room_words()
-    for start in range(len(words)):
-        tail = " ".join(words[start:])
-        if tail in table:
-            return _also_table().get(tail, ())
-    return ()
+    name = _room_name_in(phrase)
+    return _also_table().get(name, ()) if name is not None else ()
 
 
 def room_types() -> tuple[str, ...]:
@@ -304,12 +299,19 @@ def room_type(phrase: str) -> str | None:
     """The room type ``phrase`` names, or None: case-insensitive, by the type's name or an
     alias ("Guest Room" → bedroom), else by the longest tail that is one ("upstairs guest
     bathroom" → bathroom); trailing numbers are ignored ("bedroom 2" → bedroom)."""
+    name = _room_name_in(phrase)
+    return room_words()[name] if name is not None else None
+
+
+def _room_name_in(phrase: str) -> str | None:
+    """The name or alias ``phrase`` is, else its longest tail that is one (trailing
+    numbers ignored); None when no tail names a room type."""
     words = _words(phrase)
     table = room_words()
     for start in range(len(words)):
-        found = table.get(" ".join(words[start:]))
-        if found is not None:
-            return found
+        tail = " ".join(words[start:])
+        if tail in table:
+            return tail
     return None
 
 

@@ -10,19 +10,12 @@ import pytest
 
 from inherit_sg.facade import MapService, build_map
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-OFFICE0 = REPO_ROOT / ".." / "shared" / "data" / "real" / "replica_office0"
-
-pytestmark = pytest.mark.skipif(
-    not (OFFICE0 / "traj.txt").is_file(), reason="shared real data absent"
-)
-
 
 def test_office0_maps_to_objects_with_the_defaults(
-    tmp_path: Path, caplog: pytest.LogCaptureFixture
+    real_data: Path, tmp_path: Path, caplog: pytest.LogCaptureFixture
 ) -> None:
     with caplog.at_level("WARNING"):
-        summary = build_map(OFFICE0, tmp_path / "office0")
+        summary = build_map(real_data / "replica_office0", tmp_path / "office0")
     assert summary["frames"] == 4 and summary["objects"] >= 3, summary
     assert "without instance masks" in caplog.text and "perception.segmenter" in caplog.text
     with MapService.open(tmp_path / "office0") as service:
