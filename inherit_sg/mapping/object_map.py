@@ -13,7 +13,7 @@ from inherit_sg.mapping.association import AssociationParams, Match, associate
 from inherit_sg.mapping.backproject import Observation
 from inherit_sg.mapping.fusion import fuse, merge_tracked
 from inherit_sg.mapping.tracked import TrackedObject
-from inherit_sg.model import Layer, ObjectNode, ObjectStatus, make_id
+from inherit_sg.model import BBox3D, Layer, ObjectNode, ObjectStatus, make_id
 
 LabelSimilarity = Callable[[str, str], float]
 
@@ -122,7 +122,8 @@ class ObjectMap:
     def remove_duplicates(
         self, min_overlap: float = 0.5, min_iou: float = 0.25
     ) -> list[tuple[str, str]]:
-        """Merge same-label nodes whose boxes overlap strongly (split masks, drift).
+        """Merge same-label nodes whose boxes overlap strongly (split masks, drift), or
+        that are overlapping pieces of one long object (see :func:`pieces_of_one`).
         Returns (kept, dropped) pairs; dropped ids are listed in ``self.removed``."""
         merged: list[tuple[str, str]] = []
         by_label: dict[tuple[str, str | None], list[TrackedObject]] = {}
@@ -142,6 +143,7 @@ class ObjectMap:
                     if (
                         inter / smaller >= min_overlap
                         or keep.node.bbox.iou(other.node.bbox) >= min_iou
+                        or pieces_of_one(keep.node.bbox, other.node.bbox)
                     ):
                         merge_tracked(keep, other)
                         del self.objects[other.id]
@@ -156,3 +158,20 @@ class ObjectMap:
     def nodes(self) -> Iterable[ObjectNode]:
         """Current object nodes."""
         return (o.node for o in self.objects.values())
+
+
+def pieces_of_one(
+    a: BBox3D, b: BBox3D, same_extent: float = 0.75, min_shared: float = 0.3
+) -> bool:
+    """Whether two boxes look like overlapping pieces of one long object: a staircase, a
+    counter or a bed seen a part at a time. They match in two axes (1-D overlap over union
+    at least ``same_extent``) and overlap along the third by at least ``min_shared`` of the
+    shorter piece. Neighbours standing side by side (chairs at a table, pillows on a sofa)
+    touch at most, so they do not qualify."""
+    shared = np.clip(np.minimum(a.max, b.max) - np.maximum(a.min, b.min), 0.0, None)
+    union = np.maximum(a.max, b.max) - np.minimum(a.min, b.min)
+    shorter = np.maximum(np.minimum(a.size, b.size), 1e-6)
+    matched = shared / np.maximum(union, 1e-6) >= same_extent
+    if int(matched.sum()) < 2:
+        return False
+    return bool(np.all(matched | (shared / shorter >= min_shared)))

@@ -15,7 +15,7 @@ from inherit_sg.mapping.backproject import (
     robust_box,
     voxel_downsample,
 )
-from inherit_sg.mapping.object_map import ObjectMap
+from inherit_sg.mapping.object_map import ObjectMap, pieces_of_one
 from inherit_sg.model import BBox3D, Frame, Intrinsics, Pose
 
 K = Intrinsics(160, 120, 100.0, 100.0, 79.5, 59.5, 1000.0)
@@ -181,3 +181,19 @@ def test_duplicates_are_merged() -> None:
     merged = omap.remove_duplicates()
     assert merged == [(node.id, second.id)] or merged == [(second.id, node.id)]
     assert len(omap) == 1 and omap.removed
+
+
+def test_overlapping_pieces_of_one_staircase_are_one_object() -> None:
+    # a staircase seen a flight at a time: same width and height, overlapping lengthwise
+    lower = BBox3D((4.68, 1.70, 0.10), (5.66, 5.05, 2.69))
+    upper = BBox3D((4.68, 4.40, 0.10), (5.66, 5.80, 3.07))
+    assert lower.intersection_volume(upper) / upper.volume < 0.5  # the plain rule misses it
+    assert pieces_of_one(lower, upper)
+    # two chairs side by side whose boxes just touch stay two chairs
+    chair = BBox3D((0.0, 0.0, 0.0), (0.45, 0.45, 0.9))
+    neighbour = BBox3D((0.43, 0.0, 0.0), (0.88, 0.45, 0.9))
+    assert not pieces_of_one(chair, neighbour)
+    # boxes matching in one axis only (an L of counters) stay apart
+    run_a = BBox3D((0.0, 0.0, 0.0), (3.0, 0.6, 0.9))
+    run_b = BBox3D((2.4, 0.0, 0.0), (3.0, 2.5, 0.9))
+    assert not pieces_of_one(run_a, run_b)
