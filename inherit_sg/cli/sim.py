@@ -1,5 +1,6 @@
 """``inherit-sg sim``: synthetic multi-floor houses (``generate``) and Matterport3D
-``.house`` layouts (``render-house``) walked and rendered into isg datasets.
+``.house`` layouts (``render-house``) walked and rendered into isg datasets, and real
+scanned meshes rendered along their recorded trajectory (``render-mesh``).
 
 Heavy imports (trimesh, embreex, scipy) happen inside the commands so that
 ``inherit-sg --help`` stays fast.
@@ -11,7 +12,7 @@ import shutil
 from collections.abc import Callable
 from enum import StrEnum
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, TypeVar
 
 import typer
 
@@ -20,8 +21,10 @@ from inherit_sg.errors import InputError
 
 if TYPE_CHECKING:
     from ingest.synthetic.generate import DatasetSummary
+    from inherit_sg.model import Intrinsics
 
 Progress = Callable[[int, int], None]
+Summary = TypeVar("Summary")
 
 app = typer.Typer(
     name="sim",
@@ -204,7 +207,99 @@ def render_house(
     _report(summary, as_json)
 
 
-def _with_progress(as_json: bool, work: Callable[[Progress], DatasetSummary]) -> DatasetSummary:
+@app.command("render-mesh")
+@handle_errors
+def render_mesh(
+    mesh_file: Annotated[
+        Path, typer.Argument(help="Coloured triangle mesh (PLY/OBJ) of a scanned place.")
+    ],
+    trajectory: Annotated[
+        Path,
+        typer.Option(
+            "--trajectory",
+            "-t",
+            help="Camera-to-world poses, one row-major 4×4 matrix per line (NICE-SLAM "
+            "traj.txt; z-up world, OpenCV camera).",
+        ),
+    ],
+    camera: Annotated[
+        Path,
+        typer.Option(
+            "--camera",
+            "-c",
+            help="Camera intrinsics: cam_params.json (NICE-SLAM) or an isg intrinsics.json.",
+        ),
+    ],
+    out: Annotated[Path, typer.Option("--out", "-o", help="Dataset folder to write.")],
+    frames: Annotated[
+        int, typer.Option(min=1, help="Frames to render, spread evenly over the trajectory.")
+    ] = 200,
+    scale: Annotated[
+        float,
+        typer.Option(min=0.05, max=4.0, help="Image size relative to the camera's own."),
+    ] = 0.5,
+    force: ForceOption = False,
+    as_json: JsonOption = False,
+) -> None:
+    """Render a real scanned mesh along its recorded trajectory into an isg dataset.
+
+    The frames have no instance masks, like a real RGB-D recording: `map build` finds objects
+    with the classical segmenter. Example (Replica office0):
+    `inherit-sg sim render-mesh office0_mesh.ply -t traj.txt -c cam_params.json -o office0`.
+    """
+    from ingest.mesh_render import MeshRenderer, write_mesh_dataset
+    from ingest.readers.replica import read_trajectory
+
+    intrinsics = _read_camera(camera).scaled(scale)
+    poses = read_trajectory(trajectory)
+    renderer = MeshRenderer.load(mesh_file)
+    _prepare_out(out, force)
+    summary = _with_progress(
+        as_json,
+        lambda progress: write_mesh_dataset(
+            renderer, poses, intrinsics, out, frames=frames, progress=progress
+        ),
+    )
+    if as_json:
+        print_json(summary.to_dict())
+        return
+    print_table(
+        ["frames", "size", "mesh", "seconds", "folder"],
+        [
+            [
+                summary.frames,
+                f"{summary.width}×{summary.height}",
+                f"{summary.vertices} vertices, {summary.faces} faces",
+                f"{summary.seconds:.1f}",
+                summary.out_dir,
+            ]
+        ],
+    )
+
+
+def _read_camera(path: Path) -> Intrinsics:
+    """Intrinsics from a NICE-SLAM ``cam_params.json`` or an isg ``intrinsics.json``."""
+    import json
+
+    from ingest.readers.replica import read_cam_params
+    from inherit_sg.errors import DatasetError, FrameError
+    from inherit_sg.model import Intrinsics
+
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"camera file not found: {path}") from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: invalid JSON: {exc}") from None
+    if isinstance(data, dict) and ("camera" in data or "w" in data):
+        return read_cam_params(path)
+    try:
+        return Intrinsics.from_dict(data)
+    except (FrameError, TypeError, AttributeError) as exc:
+        raise DatasetError(f"{path}: not camera intrinsics: {exc}") from None
+
+
+def _with_progress(as_json: bool, work: Callable[[Progress], Summary]) -> Summary:
     """Run ``work`` with a frame progress bar on stderr (cleared when printing JSON)."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, TimeRemainingColumn

@@ -160,9 +160,7 @@ class ObjectMap:
         return (o.node for o in self.objects.values())
 
 
-def pieces_of_one(
-    a: BBox3D, b: BBox3D, same_extent: float = 0.75, min_shared: float = 0.3
-) -> bool:
+def pieces_of_one(a: BBox3D, b: BBox3D, same_extent: float = 0.75, min_shared: float = 0.3) -> bool:
     """Whether two boxes look like overlapping pieces of one long object: a staircase, a
     counter or a bed seen a part at a time. They match in two axes (1-D overlap over union
     at least ``same_extent``) and overlap along the third by at least ``min_shared`` of the

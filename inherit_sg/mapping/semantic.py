@@ -23,6 +23,7 @@ from inherit_sg.perception.base import (
     Segmenter,
     VisualEncoder,
 )
+from inherit_sg.perception.describer import UNNAMED, is_round_footprint
 
 # Building parts the segmenter may report that are not objects of the map.
 BACKGROUND_LABELS = frozenset({"wall", "floor", "ceiling", "background", "unlabeled", "void"})
@@ -144,7 +145,10 @@ class SemanticStream:
 
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)
-        crop = ObjectObservation.from_frame(frame, det, (extent[0], extent[1], extent[2]))
+        round_footprint = det.label == UNNAMED and is_round_footprint(obs.points)
+        crop = ObjectObservation.from_frame(
+            frame, det, (extent[0], extent[1], extent[2]), round_footprint=round_footprint
+        )
         self.objects.objects[node_id].node.description = self.describer.describe(crop)
 
     def _vote_colour(self, node_id: str, frame: Frame, det: Detection) -> None:

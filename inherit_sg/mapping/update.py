@@ -50,7 +50,7 @@ from inherit_sg.model import (
     SceneGraph,
     make_id,
 )
-from inherit_sg.perception.describer import template_description
+from inherit_sg.perception.describer import UNNAMED, is_round_footprint, template_description
 
 _NUMBERS = re.compile(r"\d+(?:\.\d+)?")
 
@@ -261,6 +261,7 @@ class HierarchyBuilder:
                     (extent[0], extent[1], extent[2]),
                     room_labels.get(node.room_id or ""),
                     material=node.attributes.get("material"),
+                    round_footprint=node.label == UNNAMED and is_round_footprint(tracked.points),
                 )
         for tracked in objects.objects.values():
             node = tracked.node

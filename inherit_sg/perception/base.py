@@ -65,7 +65,8 @@ class ObjectObservation:
 
     ``rgb`` (h, w, 3) uint8 and ``mask`` (h, w) bool are the crop around the object;
     ``extent`` is the object's 3D size in metres (x, y, z with z up) from
-    back-projection; ``room`` is the label of the room it is in, when known.
+    back-projection; ``room`` is the label of the room it is in, when known;
+    ``round_footprint``: its floor-plan outline is round (a bin, a round table).
     """
 
     label: str
@@ -73,6 +74,7 @@ class ObjectObservation:
     mask: np.ndarray
     extent: tuple[float, float, float]
     room: str | None = None
+    round_footprint: bool = False
 
     def __post_init__(self) -> None:
         if self.rgb.ndim != 3 or self.rgb.shape[2] != 3 or self.rgb.dtype != np.uint8:
@@ -94,6 +96,7 @@ class ObjectObservation:
         extent: tuple[float, float, float],
         room: str | None = None,
         margin: int = 4,
+        round_footprint: bool = False,
     ) -> ObjectObservation:
         """Crop ``detection`` (plus ``margin`` pixels) out of ``frame``."""
         x0, y0, x1, y1 = detection.bbox_xyxy
@@ -106,6 +109,7 @@ class ObjectObservation:
             mask=np.ascontiguousarray(detection.mask[ys, xs]),
             extent=extent,
             room=room,
+            round_footprint=round_footprint,
         )
 
 

@@ -12,6 +12,9 @@ import math
 import threading
 import time
 
+import cv2
+import numpy as np
+
 from inherit_sg.errors import ModelUnavailableError
 from inherit_sg.perception.base import Describer, ObjectObservation
 from inherit_sg.perception.colour_names import colour_name
@@ -40,10 +43,11 @@ def size_class(extent: tuple[float, float, float]) -> str:
 UNNAMED = "object"
 
 
-def shape_word(extent: tuple[float, float, float]) -> str:
-    """How a box looks, from its extent (x, y, z up, metres): "flat" (a low slab: a rug, a
-    tray), "tall" (a column: a lamp, a cabinet), "long" (a bench, a shelf) or "box-like";
-    "" for an extent that says nothing."""
+def shape_word(extent: tuple[float, float, float], round_footprint: bool = False) -> str:
+    """How a thing looks, from its extent (x, y, z up, metres) and whether its footprint is
+    round (:func:`is_round_footprint`): "flat" (a low slab: a rug, a tray), "tall" (a
+    column: a lamp, a cabinet), "round" (a bin, a round table, a stool), "long" (a bench, a
+    shelf) or "box-like"; "" for an extent that says nothing."""
     if not all(math.isfinite(v) and v > 0 for v in extent):
         return ""
     low, high = sorted(extent[:2])
@@ -52,9 +56,38 @@ def shape_word(extent: tuple[float, float, float]) -> str:
         return "flat"
     if height > 1.8 * high and height > 0.6:
         return "tall"
+    if round_footprint:
+        return "round"
     if high > 2.5 * low:
         return "long"
     return "box-like"
+
+
+# A disc fills π/4 ≈ 0.785 of its bounding rectangle (a half disc, the visible front of a
+# cylinder, fills the same share of its own); a rectangle fills 1, a triangle 0.5.
+ROUND_FILL = (0.70, 0.88)
+ROUND_MAX_ASPECT = 2.1  # the visible half of a cylinder is a half disc, 2:1
+ROUND_MIN_CORNERS = 5
+
+
+def is_round_footprint(points: np.ndarray) -> bool:
+    """Whether the floor-plan outline of world ``points`` (N, 3) is round: its convex hull
+    fills a disc's share of its smallest bounding rectangle, is at most about twice as long
+    as wide (a half disc, seen from one side), and has no few sharp corners (its outline
+    simplified at 3 % of the perimeter keeps at least :data:`ROUND_MIN_CORNERS` vertices,
+    where a box keeps four and an L-shaped view three)."""
+    xy = np.ascontiguousarray(np.asarray(points, dtype=np.float32).reshape(-1, 3)[:, :2])
+    if len(xy) < 12 or not np.isfinite(xy).all():
+        return False
+    hull = cv2.convexHull(xy)
+    (_, _), (w, h), _ = cv2.minAreaRect(hull)
+    if min(w, h) <= 1e-3 or max(w, h) / min(w, h) > ROUND_MAX_ASPECT:
+        return False
+    fill = float(cv2.contourArea(hull)) / float(w * h)
+    if not ROUND_FILL[0] <= fill <= ROUND_FILL[1]:
+        return False
+    outline = cv2.approxPolyDP(hull, 0.03 * cv2.arcLength(hull, True), True)
+    return len(outline) >= ROUND_MIN_CORNERS
 
 
 def _dims(extent: tuple[float, float, float]) -> str:
@@ -82,7 +115,13 @@ class TemplateDescriber:
 
     def describe(self, obs: ObjectObservation) -> str:
         """E.g. "a red chair, about 0.5 × 0.5 × 0.9 m, medium-sized, in the kitchen"."""
-        return template_description(obs.label, colour_name(obs.rgb, obs.mask), obs.extent, obs.room)
+        return template_description(
+            obs.label,
+            colour_name(obs.rgb, obs.mask),
+            obs.extent,
+            obs.room,
+            round_footprint=obs.round_footprint,
+        )
 
 
 def template_description(
@@ -92,14 +131,16 @@ def template_description(
     room: str | None = None,
     *,
     material: str | None = None,
+    round_footprint: bool = False,
 ) -> str:
     """The offline sentence from a label, a colour name ("unknown" to omit it), the 3D
-    extent in metres, the room label and a measured material (None to omit it); also
+    extent in metres, the room label, a measured material (None to omit it) and whether the
+    footprint is round (shape words are given to unnamed things only); also
     used to refresh descriptions when fused observations change an object's size, room
     or material, e.g. "a brown wooden table, about 1.2 × 0.8 × 0.75 m, ..."."""
     label = label.strip().lower() or UNNAMED
     # an unnamed thing is told apart by how it looks: "a tall white object"
-    shape = shape_word(extent) if label == UNNAMED else ""
+    shape = shape_word(extent, round_footprint) if label == UNNAMED else ""
     words = [w for w in (shape, colour if colour != "unknown" else "", _adjective(material)) if w]
     noun = " ".join([*words, label])
     parts = [with_article(noun)]

@@ -11,6 +11,7 @@ from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
 from inherit_sg.perception.describer import (
     FallbackDescriber,
     TemplateDescriber,
+    is_round_footprint,
     shape_word,
     size_class,
     template_description,
@@ -138,3 +139,36 @@ def test_an_unnamed_thing_is_described_by_its_shape() -> None:
     assert text.startswith("a tall white object, about 0.4 × 0.4 × 1.6 m")
     # a named thing is told by its name; its shape is left out
     assert template_description("lamp", "white", (0.4, 0.4, 1.6)).startswith("a white lamp")
+
+
+def _rotated(points: np.ndarray, angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return points @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T
+
+
+def _box_faces(w: float, d: float, faces: tuple[str, ...], rng: np.random.Generator) -> np.ndarray:
+    t = rng.uniform(0, 1, (300, 2))
+    sides = {
+        "front": np.c_[t[:, 0] * w, np.zeros(300), t[:, 1]],
+        "side": np.c_[np.zeros(300), t[:, 0] * d, t[:, 1]],
+        "top": np.c_[t[:, 0] * w, t[:, 1] * d, np.ones(300)],
+    }
+    return np.vstack([sides[f] for f in faces])
+
+
+def test_a_round_footprint_is_told_from_a_box_seen_from_any_side() -> None:
+    rng = np.random.default_rng(3)
+    angle = rng.uniform(0, 2 * np.pi, 400)
+    bin_wall = np.c_[0.2 * np.cos(angle), 0.2 * np.sin(angle), rng.uniform(0, 0.6, 400)]
+    assert is_round_footprint(bin_wall)
+    front_half = bin_wall[np.sin(angle) >= 0]  # one view sees half of the cylinder
+    assert is_round_footprint(front_half)
+    for turn in np.linspace(0, 1.5, 7):
+        for faces in (("front",), ("front", "side"), ("front", "side", "top")):
+            box = _box_faces(0.5, 0.4, faces, rng)
+            assert not is_round_footprint(_rotated(box, turn)), (turn, faces)
+    assert not is_round_footprint(np.zeros((5, 3)))  # too few points say nothing
+    assert shape_word((0.4, 0.4, 0.5), round_footprint=True) == "round"
+    assert shape_word((0.3, 0.3, 1.2), round_footprint=True) == "tall"  # a pole stays tall
+    text = template_description("object", "red", (0.4, 0.4, 0.5), round_footprint=True)
+    assert text.startswith("a round red object")
