@@ -30,6 +30,7 @@ from api.state import Registry, resolve_maps, served_map
 from api.views import FloorQ, LabelQ, Limit, Offset, RoomQ
 from inherit_sg import __version__
 from inherit_sg.config import Config, load_config
+from inherit_sg.json_values import jsonable
 
 
 def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> FastAPI:
@@ -111,7 +112,10 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
             max_rows=body.max_rows,
             timeout_s=body.timeout_s or cfg.service.cypher_timeout_s,
         )
-        return CypherResponse(columns=result.columns, rows=result.rows, truncated=result.truncated)
+        # BLOB columns (room masks) come back as {"base64": …}, as in `cypher --json`
+        return CypherResponse(
+            columns=result.columns, rows=jsonable(result.rows), truncated=result.truncated
+        )
 
     @app.get("/v1/maps/{map}/objects")
     def objects(

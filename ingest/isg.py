@@ -93,7 +93,7 @@ def read_intrinsics(root: Path) -> Intrinsics:
         data = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise DatasetError(f"{root}: missing {INTRINSICS_FILE}") from None
-    except json.JSONDecodeError as exc:
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise DatasetError(f"{path}: invalid JSON: {exc}") from None
     try:
         return Intrinsics.from_dict(data)

@@ -14,6 +14,7 @@ from inherit_sg.errors import InputError, MapError
 from inherit_sg.store import CypherResult, MapStore
 from inherit_sg.store.cypher_worker import CypherWorker
 from inherit_sg.store.mapdir import GRAPH_FILE
+from inherit_sg.store.skip_guard import check_plain_skip
 
 if TYPE_CHECKING:
     import numpy as np
@@ -108,8 +109,10 @@ class MapService:
         open read-only the statement runs in a worker process, so a statement that
         crashes the database engine costs only itself (a CypherError) and the next one
         runs in a fresh worker (:mod:`~inherit_sg.store.cypher_worker`); on a map open for
-        writing (Kuzu then admits no other process) it runs in this process."""
+        writing (Kuzu then admits no other process) it runs in this process, and a SKIP
+        must then be a plain number or a parameter (:func:`check_plain_skip`)."""
         if self.store.writable:
+            check_plain_skip(query)
             return self.store.cypher(
                 query, params, read_only=True, max_rows=max_rows, timeout_s=timeout_s
             )
@@ -166,6 +169,11 @@ class MapService:
     # ------------------------------------------------------------ export
     def export_json(self, out: str | Path, *, images: bool = True) -> dict[str, int]:
         """Write the whole map as one JSON document (see :func:`import_json`)."""
+        target = Path(out)
+        if target.is_dir():
+            raise InputError(f"export target {target} is a directory: name a .json file")
+        if not target.parent.is_dir():
+            raise InputError(f"export target folder {target.parent} does not exist")
         from inherit_sg.exchange.records import (
             edge_to_record,
             keyframe_to_record,
@@ -189,7 +197,14 @@ class MapService:
             ],
             "sessions": [session_to_record(s) for s in self.store.sessions()],
         }
-        Path(out).write_text(json.dumps(doc), encoding="utf-8")
+        # written beside the target and renamed, so a failed export leaves no half file
+        partial = target.with_name(target.name + ".partial")
+        try:
+            partial.write_text(json.dumps(doc), encoding="utf-8")
+            partial.replace(target)
+        except OSError as exc:
+            partial.unlink(missing_ok=True)
+            raise InputError(f"cannot write the export to {target}: {exc}") from None
         return {
             "nodes": len(graph),
             "edges": sum(1 for _ in graph.edges()),
@@ -253,7 +268,7 @@ def import_into_new_map(
         raise InputError(f"unknown import format {fmt!r}: use json, spark-dsg or scene")
     try:
         doc = json.loads(src.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"{src}: invalid JSON: {exc}") from None
     if not isinstance(doc, dict) or doc.get("format") != EXPORT_FORMAT:
         raise InputError(

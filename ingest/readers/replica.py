@@ -46,7 +46,7 @@ def read_cam_params(path: Path) -> Intrinsics:
         data: Any = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise DatasetError(f"missing {path}") from None
-    except json.JSONDecodeError as exc:
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise DatasetError(f"{path}: invalid JSON: {exc}") from None
     cam = data.get("camera", data) if isinstance(data, dict) else None
     if not isinstance(cam, dict):

@@ -166,5 +166,5 @@ class Scene:
             return cls.from_dict(json.loads(path.read_text(encoding="utf-8")))
         except FileNotFoundError:
             raise DatasetError(f"no ground truth: {path} not found") from None
-        except json.JSONDecodeError as exc:
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
             raise DatasetError(f"{path}: invalid JSON: {exc}") from None

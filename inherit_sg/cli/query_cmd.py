@@ -102,8 +102,8 @@ def _requests(path: Path) -> list[tuple[int, dict[str, Any] | None, str | None]]
     """(line number, request, problem) for every non-empty line of a JSON-lines file."""
     try:
         lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError as exc:
-        raise InputError(f"batch file {path}: cannot read it ({exc})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"batch file {path}: cannot read it as UTF-8 text ({exc})") from None
     out: list[tuple[int, dict[str, Any] | None, str | None]] = []
     for number, line in enumerate(lines, start=1):
         if not line.strip():

@@ -89,7 +89,7 @@ def spark_dsg_to_graph(path: str | Path, label_space: dict[int, str] | None = No
         data = json.loads(p.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise DatasetError(f"Spark-DSG file not found: {p}") from None
-    except json.JSONDecodeError as exc:
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise DatasetError(f"{p}: invalid JSON: {exc}") from None
     if not isinstance(data, dict) or not isinstance(data.get("nodes"), list):
         raise DatasetError(f"{p}: not a Spark-DSG JSON file (no 'nodes' list)")

@@ -118,7 +118,7 @@ def read_map_info(path: Path) -> MapInfo:
         raise MapNotFoundError(f"{path} is not an INHerit-SG map (no {MAP_JSON})")
     try:
         data = json.loads(file.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
+    except (OSError, ValueError) as exc:  # JSON or UTF-8 decoding
         raise MapCorruptError(f"{file}: unreadable ({exc})") from None
     if not isinstance(data, dict):
         raise MapCorruptError(f"{file}: expected a JSON object")

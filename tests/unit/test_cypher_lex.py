@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import pytest
+
+from inherit_sg.errors import CypherError
 from inherit_sg.store.cypher_lex import TokenKind, split_statements, tokenize
 
 
@@ -40,3 +43,23 @@ def test_split_statements_respects_literals_and_comments() -> None:
 
 def test_split_statements_of_blank_input() -> None:
     assert split_statements("  ;; // nothing\n") == []
+
+
+def test_a_computed_skip_is_refused_where_no_worker_can_run_it() -> None:
+    from inherit_sg.store.skip_guard import check_plain_skip
+
+    for fine in (
+        "MATCH (o) RETURN o SKIP 5 LIMIT 5",
+        "MATCH (o) RETURN o SKIP $offset",
+        "CALL { MATCH (o) RETURN o SKIP 3 } RETURN o",
+        "MATCH (o) RETURN o.skip AS s",  # a property named skip is no clause
+    ):
+        check_plain_skip(fine)
+    for computed in (
+        "MATCH (o:Object) RETURN o.id ORDER BY o.id SKIP (20000) LIMIT 5",
+        "MATCH (o) RETURN o SKIP 10000+10000 LIMIT 5",
+        "MATCH (o) RETURN o SKIP toInteger('5')",
+        "MATCH (o) RETURN o SKIP 2*5000",
+    ):
+        with pytest.raises(CypherError, match="plain number"):
+            check_plain_skip(computed)
