@@ -292,6 +292,8 @@ class Mapper:
                     tracked.floor_id = tracked.node.floor_id = floor
                     tracked.dirty = True
             merged = self.objects.remove_duplicates()
+            for keep, drop in merged:
+                self.missing.merged(keep, drop)
             self._seen_index = None
             alias = {drop: keep for keep, drop in merged}
             self.builder.rebuild(self.graph, self.objects, self.geometry.room_at)
