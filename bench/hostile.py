@@ -22,6 +22,10 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from inherit_sg.benchmark.tables import table  # noqa: E402
+
 SUITE = "tests/e2e/test_hostile_suite.py"
 
 
@@ -66,13 +70,6 @@ def summarise(records: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return rows
 
 
-def markdown(rows: list[dict[str, Any]]) -> str:
-    head = list(rows[0])
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    lines += ["| " + " | ".join(str(r[h]) for h in head) + " |" for r in rows]
-    return "\n".join(lines)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "hostile.json")
@@ -82,7 +79,7 @@ def main() -> None:
     args.out.write_text(
         json.dumps({"pytest_exit": status, "summary": rows, "inputs": records}, indent=1) + "\n"
     )
-    print(markdown(rows))
+    print(table(list(rows[0]), [list(r.values()) for r in rows]))
     print(f"\npytest exit status {status}; records in {args.out}")
 
 

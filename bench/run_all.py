@@ -168,6 +168,8 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("mp3d_independent", MP3D_INDEPENDENT_JSON),
             ("mp3d_rooms", MP3D_ROOMS_JSON),
             ("mp3d_objects", MP3D_OBJECTS_JSON),
+            ("hostile", RESULTS.parent / "hostile.json"),
+            ("cypher_isolation", RESULTS.parent / "cypher_isolation.json"),
         )
         if path.is_file()
     }

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from inherit_sg.benchmark import report
+from inherit_sg.benchmark import report, trust
 from inherit_sg.benchmark import request_sets as request_sets_section
 from inherit_sg.benchmark.tables import table
 
@@ -130,6 +130,22 @@ def render_page(
             "`bench/results/mp3d_rooms.json` and `mp3d_objects.json` (`python "
             "bench/mp3d_rooms.py`, `python bench/mp3d_objects.py`).",
             request_sets_section.mp3d_rooms_section(sets["mp3d_rooms"], sets.get("mp3d_objects")),
+        ]
+    if "hostile" in sets:
+        parts += [
+            "## Hostile inputs",
+            "The hostile suite (`tests/e2e/test_hostile_suite.py`): bad input as a careless "
+            "or hostile user gives it, over every face. After each input the served map must "
+            "still answer with all its objects and a live session keep every frame it "
+            "accepted; from `bench/results/hostile.json` (`python bench/hostile.py`).",
+            trust.hostile_section(sets["hostile"]),
+        ]
+    if "cypher_isolation" in sets:
+        parts += [
+            "## User Cypher in a worker process",
+            "A statement that crashes the database engine costs only itself; from "
+            "`bench/results/cypher_isolation.json` (`python bench/cypher_isolation.py`).",
+            trust.cypher_isolation_section(sets["cypher_isolation"]),
         ]
     if scale_rows:
         parts += [

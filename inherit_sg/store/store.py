@@ -26,7 +26,7 @@ import kuzu
 import numpy as np
 
 from inherit_sg.config import Config
-from inherit_sg.errors import InputError, MapError
+from inherit_sg.errors import InputError, MapCorruptError, MapError
 from inherit_sg.model import ChangeSet, Edge, Keyframe, Node, SceneGraph, Session
 from inherit_sg.store import graph_read, graph_write, node_write, text_index
 from inherit_sg.store.embeddings import VectorDelta
@@ -36,6 +36,8 @@ from inherit_sg.store.kuzu_graph import CypherResult, KuzuGraph
 from inherit_sg.store.kuzu_util import rows
 from inherit_sg.store.lock import WriterLock, is_locked, locked_error
 from inherit_sg.store.mapdir import (
+    GRAPH_FILE,
+    INDEX_FILE,
     LANCE_DIR,
     LOCK_FILE,
     MapInfo,
@@ -44,6 +46,7 @@ from inherit_sg.store.mapdir import (
     write_map_info,
 )
 from inherit_sg.store.migrations import latest_version
+from inherit_sg.store.open_probe import crashing_files, remember
 from inherit_sg.store.search import VectorSearcher
 from inherit_sg.store.search_index import SearchIndex, bump_generation, graph_generation
 from inherit_sg.store.stats import MapStats, compute_stats
@@ -154,10 +157,12 @@ class MapStore:
         cls, root: Path, info: MapInfo, lock: WriterLock | None, cfg: Config, *, create: bool
     ) -> MapStore:
         write = lock is not None
-        graph = open_graph(root, info, write=write, create=create)
+        # a damaged file can crash the engine as it opens: try each in a child first
+        crashed = {} if create else crashing_files(root, [GRAPH_FILE, INDEX_FILE])
+        graph = open_graph(root, info, write=write, create=create, crashed=crashed.get(GRAPH_FILE))
         index: SearchIndex | None = None
         try:
-            index = open_index(root, info, write=write)
+            index = open_index(root, info, write=write, crashed=crashed.get(INDEX_FILE))
             store = cls(root, info, graph, index, lock, cfg)
             store._check_index()
             if write and not create:
@@ -196,6 +201,8 @@ class MapStore:
                 self._index.close()
             graph.close()
             if self._lock is not None:
+                # what this writer leaves behind it wrote itself: no need to probe it
+                remember(self.path, [GRAPH_FILE, INDEX_FILE])
                 self._lock.release()
 
     def __enter__(self) -> MapStore:
@@ -366,9 +373,18 @@ class MapStore:
 
     # ---------------------------------------------------------------- reads
     def load_graph(self) -> SceneGraph:
-        """The whole scene graph with embeddings; its change log is empty."""
+        """The whole scene graph with embeddings; its change log is empty. Stored values
+        that cannot be decoded (a damaged graph.kuzu) raise MapCorruptError."""
         with self._g().snapshot() as conn:
-            return graph_read.load_graph(conn, self.info.dims)
+            try:
+                return graph_read.load_graph(conn, self.info.dims)
+            except (UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
+                raise MapCorruptError(
+                    f"map {self.path}: {GRAPH_FILE} holds values that cannot be read "
+                    f"({type(exc).__name__}: {str(exc)[:160]}); the file is damaged: restore "
+                    "the map from a backup, or import an earlier export "
+                    "(inherit-sg import FILE --map NEW)"
+                ) from None
 
     def get_node(self, node_id: str) -> Node:
         """One node with its embeddings; NodeNotFoundError when absent."""

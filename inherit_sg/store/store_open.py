@@ -11,8 +11,20 @@ from pathlib import Path
 from inherit_sg.errors import MapCorruptError, MapLockedError, SchemaVersionError
 from inherit_sg.store.kuzu_graph import KuzuGraph
 from inherit_sg.store.lock import is_locked, locked_error
-from inherit_sg.store.mapdir import GRAPH_FILE, INDEX_FILE, LANCE_DIR, LOCK_FILE, MapInfo
-from inherit_sg.store.migrations import apply_migrations, check_not_newer, latest_version
+from inherit_sg.store.mapdir import (
+    GRAPH_FILE,
+    INDEX_FILE,
+    LANCE_DIR,
+    LOCK_FILE,
+    MAP_JSON,
+    MapInfo,
+)
+from inherit_sg.store.migrations import (
+    apply_migrations,
+    check_not_newer,
+    latest_version,
+    recorded_version,
+)
 from inherit_sg.store.search_index import SearchIndex
 
 # Files an interrupted ``create`` may leave behind before map.json exists.
@@ -46,28 +58,43 @@ def clear_leftovers(root: Path) -> None:
 _KUZU_OPEN_ERRORS = (RuntimeError, MemoryError, ValueError, IndexError, OverflowError)
 
 
+def _damaged(root: Path, name: str, why: str) -> MapCorruptError:
+    return MapCorruptError(
+        f"map {root}: cannot open {name} ({why}); the file is damaged: restore the map "
+        "from a backup, or import an earlier export (inherit-sg import FILE --map NEW)"
+    )
+
+
 def _open_kuzu(root: Path, name: str, read_only: bool) -> KuzuGraph:
     try:
         return KuzuGraph(root / name, read_only=read_only)
     except _KUZU_OPEN_ERRORS as exc:
         if "lock" not in str(exc).lower():
-            raise MapCorruptError(
-                f"map {root}: cannot open {name} ({exc}); the file is damaged: restore the map "
-                "from a backup, or import an earlier export (inherit-sg import FILE --map NEW)"
-            ) from None
+            raise _damaged(root, name, str(exc)) from None
         if is_locked(root / LOCK_FILE):
             raise locked_error(root, root / LOCK_FILE) from None
         raise MapLockedError(f"map {root} is open in another process ({name} is locked)") from None
 
 
-def open_graph(root: Path, info: MapInfo, *, write: bool, create: bool = False) -> KuzuGraph:
+def open_graph(
+    root: Path, info: MapInfo, *, write: bool, create: bool = False, crashed: str | None = None
+) -> KuzuGraph:
     """The graph database: created and migrated (``create``), migrated (``write``), or
-    checked to be at this code's schema version (read-only)."""
+    checked to be at this code's schema version (read-only). ``crashed``: why opening the
+    file killed a probe process (:mod:`.open_probe`); it is then not opened here."""
     if not create and not (root / GRAPH_FILE).exists():
         raise MapCorruptError(f"map {root} has no {GRAPH_FILE}")
+    if crashed is not None:
+        raise _damaged(root, GRAPH_FILE, crashed)
     graph = _open_kuzu(root, GRAPH_FILE, read_only=not write)
     try:
         known = latest_version()
+        if not create and info.schema_version > 0 and recorded_version(graph.reader()) == 0:
+            # an empty or zeroed file must not be "upgraded" into an empty map
+            raise _damaged(
+                root, GRAPH_FILE, f"it holds no schema, though {MAP_JSON} records version "
+                f"{info.schema_version}",
+            )  # fmt: skip
         if write:
             with graph.writer() as conn:
                 apply_migrations(conn, info.dims, root)
@@ -92,14 +119,20 @@ def _raise_if_locked(root: Path, exc: Exception) -> None:
         ) from None
 
 
-def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
-    """The search index database; None for a read-only store when it is missing. A
-    writable store whose index cannot be opened starts a fresh one (it is derived)."""
+def open_index(
+    root: Path, info: MapInfo, *, write: bool, crashed: str | None = None
+) -> SearchIndex | None:
+    """The search index database; None for a read-only store when it is missing or
+    damaged. A writable store whose index cannot be opened starts a fresh one (it is
+    derived). ``crashed``: why opening the file killed a probe process; it is then
+    treated as damaged without being opened here."""
     file = root / INDEX_FILE
     if not write:
         if not file.exists():
             return None
         try:
+            if crashed is not None:
+                raise RuntimeError(crashed)
             return SearchIndex(file, info.dims, read_only=True)
         except _KUZU_OPEN_ERRORS as exc:
             _raise_if_locked(root, exc)
@@ -111,9 +144,12 @@ def open_index(root: Path, info: MapInfo, *, write: bool) -> SearchIndex | None:
             )  # fmt: skip
             return None
     try:
+        if crashed is not None:
+            raise RuntimeError(crashed)
         return SearchIndex(file, info.dims, read_only=False)
     except _KUZU_OPEN_ERRORS as exc:
         _raise_if_locked(root, exc)
+        log.warning("map %s: %s is damaged (%s); rebuilding it", root, INDEX_FILE, exc)
         for path in (file, file.with_name(file.name + ".wal")):
             with contextlib.suppress(FileNotFoundError):
                 path.unlink()

@@ -403,6 +403,45 @@ def _graph_garbled(env: Env) -> str:
     return process_refuses("graph.kuzu", "info", "--map", str(m))
 
 
+def _flip_bits(path: Path, count: int, seed: int) -> None:
+    data = bytearray(path.read_bytes())
+    rng = np.random.default_rng(seed)
+    for i in rng.integers(4096, len(data), count):
+        data[i] ^= 0xFF
+    path.write_bytes(bytes(data))
+
+
+@case("map files", "bit flips in the search index (own process)")
+def _index_flips(env: Env) -> str:
+    m = env.copy_map("idxflip")
+    _flip_bits(m / "index.kuzu", 200, 1)
+    proc = cli_process("query", "--map", str(m), "--no-verify", "a bed")
+    out = proc.stdout + proc.stderr
+    assert proc.returncode >= 0 and "Traceback" not in out, (proc.returncode, out)
+    return "answered" if proc.returncode == 0 else "clear error"
+
+
+@case("map files", "bit flips in the graph database (own process)")
+def _graph_flips(env: Env) -> str:
+    m = env.copy_map("graphflip")
+    _flip_bits(m / "graph.kuzu", 200, 2)
+    proc = cli_process("query", "--map", str(m), "--no-verify", "a bed")
+    out = proc.stdout + proc.stderr
+    assert proc.returncode >= 0 and "Traceback" not in out, (proc.returncode, out)
+    return "answered" if proc.returncode == 0 else "clear error"
+
+
+@case("map files", "graph database zeroed")
+def _graph_zeroed(env: Env) -> str:
+    m = env.copy_map("graphzero")
+    graph = m / "graph.kuzu"
+    graph.write_bytes(bytes(graph.stat().st_size))
+    out = raises_clearly("graph.kuzu", lambda: MapService.open(m).close())
+    # and a writer must not "upgrade" it into an empty map either
+    raises_clearly("graph.kuzu", lambda: build_map(env.walk, m, max_frames=1))
+    return out
+
+
 @case("map files", "keyframe table deleted")
 def _lance_deleted(env: Env) -> str:
     m = env.copy_map("lance")

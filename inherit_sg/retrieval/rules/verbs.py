@@ -104,7 +104,12 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
             g.restore(snap)
             if place is None:
                 g.advance()  # a particle: "something to sit on"
-    elif nxt is not None and _object_marker(nxt, verb) and g.np_start(1):
+    elif (
+        nxt is not None
+        and _object_marker(nxt, verb)
+        and g.np_start(1)
+        and not any(g.at("floor", k=k) for k in (1, 2))  # "… on the first floor"
+    ):
         g.advance()  # "dispose of trash", "check for updates", "engage in conversation"
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     elif g.np_start() and not g.at("floor"):
