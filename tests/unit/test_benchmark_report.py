@@ -169,3 +169,26 @@ def test_page_shows_the_mp3d_rooms_region_by_region() -> None:
     assert "| r6 | entryway | 7.2 / 7.3 | — | — | — |" in page
     assert "precision 0.50, recall 0.50" in page
     assert "3 of 3 categories in view are in the map" in page
+
+
+def test_trust_tables_are_rendered_from_the_bench_files() -> None:
+    hostile = {
+        "summary": [
+            {"surface": "cli", "inputs": 2, "clear errors": 2, "crashes or wrong outcomes": 0},
+            {"surface": "all", "inputs": 2, "clear errors": 2, "crashes or wrong outcomes": 0},
+        ]
+    }
+    isolation = {
+        "statement_latency": {"in_process": {"p50_ms": 0.8, "p99_ms": 1.2},
+                              "worker": {"p50_ms": 0.9, "p99_ms": 1.0}},
+        "worker_start_s": 0.98, "time_limit_s": 10.0,
+        "answered_after_limit_s": {"worker": 10.01},
+        "crash": {"answered_after_crash_s": 0.015, "next_statement_s": 0.84},
+    }  # fmt: skip
+    page = render_page(
+        [make_doc("house-a")], None, {}, "", {"hostile": hostile, "cypher_isolation": isolation}
+    )
+    assert "## Hostile inputs" in page and "| cli | 2 | 2 | 0 |" in page
+    assert "## User Cypher in a worker process" in page
+    assert "| small statement p50 / p99, worker | 0.90 ms / 1.00 ms |" in page
+    assert "| a 10.0 s limit answers after (worker) | 10.01 s |" in page
