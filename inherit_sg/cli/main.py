@@ -141,7 +141,9 @@ def cypher(
 def export_map(
     map_dir: MapOption,
     out: Annotated[Path, typer.Argument(help="Output JSON file.")],
-    no_images: Annotated[bool, typer.Option(help="Leave keyframe JPEGs out.")] = False,
+    no_images: Annotated[
+        bool, typer.Option("--no-images", help="Leave keyframe JPEGs out.")
+    ] = False,
     as_json: JsonOption = False,
 ) -> None:
     """Write a whole map (embeddings, masks, keyframes) to one lossless JSON file."""
