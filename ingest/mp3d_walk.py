@@ -5,7 +5,10 @@ neighbouring regions) minus walls at walking height and furniture footprints, sh
 the body radius. The walker starts in the entryway (or the largest region), visits every
 region nearest-first along shortest paths (the synthetic planner's Dijkstra search and
 path shortcutting), stops at a roomy spot in each one and looks around in place; a region
-it cannot enter is looked into from the nearest reachable spot. The synthetic walker's
+it cannot enter is looked into from the nearest reachable spot. A region that one stop
+does not see (a bed or sofa hides what stands behind it, an L-shaped room has a corner)
+gets further stops (:mod:`ingest.view_coverage`), and every other frame of a look-around
+tilts up to take in what hangs high on the walls and from the ceiling. The synthetic walker's
 turning and stepping rules apply: a frame every 0.5 m and every 30° of turning. Levels
 are walked lowest first; the camera moves between levels without stairs in between.
 """
@@ -22,10 +25,12 @@ from ingest.mp3d_space import Level, LevelSpace
 from ingest.mp3d_walls import WALL_T, WallSpan
 from ingest.synthetic.grid import Grid, components
 from ingest.synthetic.planner import BODY, RADIUS, FloorMap
-from ingest.synthetic.trajectory import Trajectory, _Walker, _wrap, camera_pose
+from ingest.synthetic.trajectory import LOOK_FRAMES, Trajectory, _Walker, _wrap, camera_pose
+from ingest.view_coverage import coverage_stops
 
 SEAM = 0.3  # free space reaches this far outside the regions (across wall seams)
 START_TYPES = ("entryway", "hallway", "living room")
+LOOK_UP = math.radians(20.0)  # pitch above the horizon of the look-around's upward frames
 
 
 class LevelMap(FloorMap):
@@ -41,13 +46,10 @@ class LevelMap(FloorMap):
         self._graph, self._index = self._build_graph()
 
 
-def free_space(space: LevelSpace, walls: list[WallSpan]) -> np.ndarray:
-    """Cells of ``space`` where a walking person fits (see the module docstring)."""
+def wall_cells(space: LevelSpace, walls: list[WallSpan]) -> np.ndarray:
+    """Cells of ``space`` covered by the walls of its regions at walking height."""
     g = space.grid
-    inside = ndimage.binary_dilation(
-        space.rooms >= 0, structure=np.ones((3, 3), bool), iterations=round(SEAM / g.res)
-    )
-    blocked = space.furniture | ~inside
+    blocked = np.zeros(g.shape, dtype=bool)
     room_ids = set(space.room_ids)
     pad = g.res
     for w in walls:
@@ -57,6 +59,16 @@ def free_space(space: LevelSpace, walls: list[WallSpan]) -> np.ndarray:
         a, b = w.a - d * pad, w.b + d * pad
         lo, hi = -w.normal * pad, w.normal * (WALL_T + pad)
         blocked |= rasterise(g, np.array([a + lo, b + lo, b + hi, a + hi]))
+    return blocked
+
+
+def free_space(space: LevelSpace, walls: list[WallSpan]) -> np.ndarray:
+    """Cells of ``space`` where a walking person fits (see the module docstring)."""
+    g = space.grid
+    inside = ndimage.binary_dilation(
+        space.rooms >= 0, structure=np.ones((3, 3), bool), iterations=round(SEAM / g.res)
+    )
+    blocked = space.furniture | ~inside | wall_cells(space, walls)
     blocked[0, :] = blocked[-1, :] = blocked[:, 0] = blocked[:, -1] = True
     return g.clearance(blocked) > RADIUS
 
@@ -85,6 +97,17 @@ class _HouseWalker(_Walker):
         self.traj.rooms.append(self.space.room_at(self.x, self.y))
         self.traj.activity.append(activity)
 
+    def look_around(self) -> None:
+        """Turn once in place; every other frame looks up (:data:`LOOK_UP`), as a person
+        scanning a room tilts the camera to take in what hangs on the walls and ceiling."""
+        direction = 1.0 if self.rng.random() < 0.5 else -1.0
+        level = self.pitch
+        for k in range(LOOK_FRAMES):
+            self.yaw = _wrap(self.yaw + direction * 2 * math.pi / LOOK_FRAMES)
+            self.pitch = -LOOK_UP if k % 2 else level
+            self.emit("look")
+        self.pitch = level
+
 
 def _viewpoint(fm: LevelMap, room: np.ndarray, reach: np.ndarray) -> tuple[tuple[int, int], bool]:
     """A roomy reachable cell of the region mask ``room`` near its middle, or (when none
@@ -112,7 +135,9 @@ def _start_room(space: LevelSpace) -> int:
     return int(np.argmax([(space.rooms == k).sum() for k in range(len(types))]))
 
 
-def _tour_level(w: _HouseWalker, space: LevelSpace, fm: LevelMap) -> None:
+def _tour_level(
+    w: _HouseWalker, space: LevelSpace, fm: LevelMap, sight_blocked: np.ndarray
+) -> None:
     masks = [space.rooms == k for k in range(len(space.room_ids))]
     free_any = fm.free if fm.free.any() else np.ones_like(fm.free)
     start, _ = _viewpoint(fm, masks[_start_room(space)], free_any)
@@ -124,12 +149,20 @@ def _tour_level(w: _HouseWalker, space: LevelSpace, fm: LevelMap) -> None:
         dist, pred = fm.search(fm.snap(w.x, w.y))
         k = min(sorted(targets), key=lambda r: fm.cost_to(dist, targets[r][0]))
         goal, inside = targets.pop(k)
-        w.walk(fm.path(pred, goal))
-        if not inside:  # face the region we could not enter
+        if not inside:  # look into the region we could not enter
+            w.walk(fm.path(pred, goal))
             cy, cx = np.argwhere(masks[k]).mean(axis=0)
             x, y = fm.grid.point(0, 0)
             w.turn_to(math.atan2(y + cy * fm.grid.res - w.y, x + cx * fm.grid.res - w.x))
-        w.look_around()
+            w.look_around()
+            continue
+        stops = coverage_stops(masks[k], reach, sight_blocked, fm.grid.res, goal)
+        while stops:  # the region's stops, nearest first
+            stop = min(stops, key=lambda c: fm.cost_to(dist, c))
+            stops.remove(stop)
+            w.walk(fm.path(pred, stop))
+            w.look_around()
+            dist, pred = fm.search(fm.snap(w.x, w.y))
 
 
 def plan_house_walk(
@@ -143,5 +176,6 @@ def plan_house_walk(
     w.yaw = _wrap(float(rng.uniform(-math.pi, math.pi)))
     for level, space in zip(levels, spaces, strict=True):
         w.floor, w.space = level.index, space
-        _tour_level(w, space, LevelMap(space.grid, free_space(space, walls)))
+        fm = LevelMap(space.grid, free_space(space, walls))
+        _tour_level(w, space, fm, wall_cells(space, walls) | space.furniture)
     return w.traj

@@ -58,6 +58,8 @@ def estimate_floor_z(z: np.ndarray, camera_z: float, bin_size: float = 0.05) -> 
     lo = camera_z - 2.5
     bins = ((cand - lo) / bin_size).astype(np.int64)
     counts = np.bincount(bins)
+    if counts.max() < 30:  # points spread over heights (a frame that looks up): no surface
+        return None
     need = max(30, int(0.25 * counts.max()))
     first = int(np.flatnonzero(counts >= need)[0])
     near = cand[np.abs(cand - (lo + (first + 0.5) * bin_size)) <= bin_size]

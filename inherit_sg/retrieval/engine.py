@@ -35,6 +35,7 @@ from inherit_sg.retrieval.verify import (
     OfflineVerifier,
     Verifier,
     decode_jpeg,
+    graph_failures,
     ground,
     skip_grounding,
 )
@@ -336,7 +337,14 @@ class QueryEngine:
                 found, why, box = ground(ev, segmenter, prompts)
             else:
                 found, why, box = skip_grounding(ev)
-            if found is None:
+            if found is None:  # no picture to check; the graph can still contradict it
+                failures = graph_failures(ev)
+                if failures:
+                    trace.append(
+                        f"verify {cand.id}: rejected by the graph ({'; '.join(failures)}); "
+                        "no picture to check"
+                    )
+                    continue
                 trace.append(f"verify {cand.id}: unverified ({why}); kept")
                 return cand, None
             if not found:

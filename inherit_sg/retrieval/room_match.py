@@ -10,7 +10,8 @@ A room is matched by the first of these steps that finds it, and the reason says
 2. **alternatives**: the type is among the room's inferred types (``RoomNode.types``):
    fully when it is the best one, else graded by its probability relative to the best
    (:func:`alternative_sim`), so "the TV room" finds a room labelled "living room" that
-   holds a TV;
+   holds a TV; a negated constraint weighs alternatives far less
+   (:func:`negated_alternative_sim`): "not in the living room" keeps the family room;
 3. **aliases**: the request's room words, read through ``rooms.toml`` ("WC" → toilet),
    name its label or an alternative; or a type people name interchangeably with the one
    asked for (``related`` in ``rooms.toml``: "lounge" for a living room) is its label or
@@ -47,6 +48,9 @@ LABEL_TIE_SPAN = 0.02
 # to the best one's, when their probability is at least ALT_MIN_P (never above the best).
 ALT_LO, ALT_HI = 0.5, 0.95
 ALT_MIN_P = 0.1
+# For a negated constraint ("not in the living room") an alternative weighs at most this,
+# in proportion to p / p_best: a room that only may be one never counts as one for sure.
+NEG_ALT_HI = 0.45
 # A room of a type related to the one asked for matches at the pair's similarity times this.
 RELATED_SCALE = 0.75
 # Weaker embedding resemblance than this is ignored.
@@ -83,10 +87,23 @@ def label_sim(p: float | None) -> float:
     return LABEL_LO + (sure - LABEL_LO) * max(p, 0.0) / LABEL_SURE_P
 
 
-def room_type_sims(rid: str, snap: MapSnapshot) -> dict[str, tuple[float, str]]:
+def negated_alternative_sim(p: float, p_best: float) -> float | None:
+    """How surely a room is a type it is inferred to be with probability ``p`` (its best
+    type has ``p_best``), for a constraint that excludes that type: up to
+    :data:`NEG_ALT_HI`, in proportion to ``p / p_best``; None below ``ALT_MIN_P``."""
+    if p < ALT_MIN_P or p_best <= 0:
+        return None
+    return NEG_ALT_HI * min(p / p_best, 1.0)
+
+
+def room_type_sims(
+    rid: str, snap: MapSnapshot, *, negated: bool = False
+) -> dict[str, tuple[float, str]]:
     """Every type room ``rid`` may be, with its similarity and how it is known: the type
     its label names (:func:`label_sim`), then its inferred alternatives
-    (:func:`alternative_sim`, never above the label's)."""
+    (:func:`alternative_sim`, never above the label's; :func:`negated_alternative_sim`
+    when ``negated``: "not in the living room" holds for a family room that might also
+    be read as a living room)."""
     out: dict[str, tuple[float, str]] = {}
     alts = snap.room_alternatives.get(rid, ())
     inferred = dict(alts)
@@ -99,7 +116,7 @@ def room_type_sims(rid: str, snap: MapSnapshot) -> dict[str, tuple[float, str]]:
         p_best = alts[0][1]
         top = out[label_type][0] if label_type is not None else label_sim(p_best)
         for rtype, p in alts:
-            value = alternative_sim(p, p_best)
+            value = negated_alternative_sim(p, p_best) if negated else alternative_sim(p, p_best)
             if value is not None and rtype not in out:
                 out[rtype] = (
                     min(value, top),
@@ -200,7 +217,7 @@ def match_rooms(
     # "den" names a family room and a TV room alike (``also`` in rooms.toml).
     wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
     for rid in sorted(snap.rooms):
-        types = room_type_sims(rid, snap)
+        types = room_type_sims(rid, snap, negated=negated)
         exact = [_by_type(rid, t, types) for t in dict.fromkeys(wanted) if t in types]
         if exact:
             out[rid] = max(exact, key=lambda hit: hit[0])

@@ -64,6 +64,13 @@ def test_floor_height_from_depth_points() -> None:
     assert estimate_floor_z(z[:10], EYE) is None
 
 
+def test_no_floor_height_from_a_frame_that_sees_only_walls() -> None:
+    """A camera tilted up sees walls and ceiling: points spread over many heights and no
+    bin holds a surface; that is no estimate, not an error."""
+    z = np.linspace(EYE - 2.4, EYE - 0.35, 400)
+    assert estimate_floor_z(z, EYE) is None
+
+
 def _walk(start_z: float, end_z: float) -> list:
     """Look around on one floor, climb/descend, look around on the other."""
     poses = look_around(2.0, 2.0, start_z + EYE)

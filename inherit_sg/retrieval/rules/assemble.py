@@ -105,10 +105,24 @@ def _guess_function(words: list[str], notes: list[str]) -> list[FunctionConstrai
     ]
 
 
+def _one_of_viewed(clause: Clause, notes: list[str]) -> None:
+    """ "Facing the monitors, the one on the right": a bare "one" picks from the things
+    the speaker faces when they are several of a kind; the head becomes that kind."""
+    head, view = clause.head, clause.viewpoint
+    if head is None or head.kind != ONE or head.labels or head.other or view is None:
+        return
+    seen = view.landmark.target
+    if not (seen.plural and seen.labels and seen.noun):
+        return
+    head.kind, head.labels, head.words = OBJECT, list(seen.labels), seen.noun.split()
+    notes.append(f"'the one' picks from the {seen.noun} of the viewpoint")
+
+
 def assemble(
     text: str, clause: Clause, refine: bool, notes: list[str], words: list[str]
 ) -> ParsedQuery:
     """Build the final :class:`ParsedQuery` for ``text`` (``words``: its tokens)."""
+    _one_of_viewed(clause, notes)
     reference = _reference(clause, clause.head, refine)
     head = _head(clause, reference)
     if head is None and reference == "none" and not clause.places:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 
 from inherit_sg.retrieval.constraints import (
     AreaConstraint,
+    AttributeConstraint,
     Constraint,
     LabelConstraint,
     Landmark,
@@ -23,6 +24,7 @@ from inherit_sg.retrieval.constraints import (
     Viewpoint,
 )
 from inherit_sg.retrieval.rules import verbs
+from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.grammar import VIEW_OPENERS as _VIEW_OPENERS
 from inherit_sg.retrieval.rules.grammar import Grammar
 from inherit_sg.retrieval.rules.phrase import (
@@ -159,6 +161,31 @@ def _contrast(prev: Tok | None) -> bool:
         or prev.has("but", "comma", "and", "seek", "filler", "be", "overb", "fverb")
         or (prev.text in ("instead", "rather"))
     )
+
+
+def parts_of_head(head: NP, cons: list[Constraint]) -> list[Constraint]:
+    """``cons`` with each "with X" relation turned into a part where X is a part of the
+    head's kind: "the nightstands, the one without drawers" (the "one" could not know)."""
+    from inherit_sg.nlp import lemma_phrase
+    from inherit_sg.vocab import objects as object_vocab
+
+    out: list[Constraint] = []
+    for c in cons:
+        noun = c.landmark.target.noun if isinstance(c, RelationConstraint) else ""
+        word = lemma_phrase(noun.split()[-1]) if noun else ""
+        if (
+            isinstance(c, RelationConstraint)
+            and c.predicate == "with"
+            and word
+            and any(object_vocab.is_part(word, label) for label in head.labels)
+        ):
+            value = " ".join([*c.landmark.target.attributes, word])
+            c = AttributeConstraint(
+                key="part", value=value, negated=c.negated, weight=weighted("attribute", None),
+                text=c.text,
+            )  # fmt: skip
+        out.append(c)
+    return out
 
 
 def _related(head: NP, other: NP) -> bool:
@@ -694,9 +721,15 @@ class ClauseParser(Grammar):
         assert head is not None
         prev_except = self._after_except
         vague = (GENERIC, GENERIC_AREA, VAGUE)
-        if np.kind == ONE or (np.kind in (GENERIC, VAGUE) and head.kind in vague):
+        same_kind = np.kind == OBJECT and bool(np.labels) and set(np.labels) == set(head.labels)
+        if (
+            np.kind == ONE
+            or (np.kind in (GENERIC, VAGUE) and head.kind in vague)
+            or (neg and same_kind and np.constraints)
+        ):
+            # "… It's not the armchair by the door": the same kind, its modifiers negated
             cons = [replace(c, negated=not c.negated) if neg else c for c in np.constraints]
-            head.constraints += _as_placements(head, cons)
+            head.constraints += _as_placements(head, parts_of_head(head, cons))
         elif neg and np.kind == OBJECT and np.labels and prev_except and not _related(head, np):
             # "a pen from anywhere apart from Jake's desk": a place ruled out
             head.constraints.append(

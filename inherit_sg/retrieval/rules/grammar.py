@@ -516,7 +516,7 @@ class Grammar(Cursor):
         if tok.has("with", "without") or (
             tok.has("have") and (after_be or self.at("modal", "neg", k=-1))
         ):
-            return self.parse_with(np)
+            return self.parse_with(np, landmark=landmark)
         if after_be and tok.has("colour", "material", "adj"):
             self.advance()
             self._attribute(np, tok)
@@ -864,8 +864,9 @@ class Grammar(Cursor):
             *second.places,
         ]
 
-    def parse_with(self, np: NP) -> bool:
-        """ "with X" / "without X" / "with no X next to it" / "that has X" on ``np``."""
+    def parse_with(self, np: NP, *, landmark: bool = False) -> bool:
+        """ "with X" / "without X" / "with no X next to it" / "that has X" on ``np``; on
+        a room that places something else (``landmark``), "with X" says which room."""
         tok = self.advance()
         neg = self.take_neg() != tok.has("without")
         if self.at("neg"):
@@ -878,6 +879,10 @@ class Grammar(Cursor):
         finally:
             self.with_depth -= 1
         if lm is None:
+            return True
+        if landmark and np.kind == ROOM and not neg and not np.beside and (lm.noun or lm.labels):
+            np.beside = lm.noun or lm.labels[0]  # "the bathroom with the shower": which one
+            np.places += lm.places
             return True
         predicate = "contains" if np.kind in (ROOM, AREA, GENERIC_AREA) else "with"
         after = self.peek()

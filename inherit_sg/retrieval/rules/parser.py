@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
-from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, turned_round
+from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, OBJECT, ONE, VAGUE
 from inherit_sg.retrieval.rules.problems import split_problem
@@ -89,6 +89,12 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
     out.excluded_labels += more.excluded_labels
     other = more.head
     if other is not None and more.head_negated and other.kind == OBJECT and other.labels:
+        if set(other.labels) == set(head.labels) and other.constraints:
+            # "… It's not the armchair by the door": the same kind, its modifiers negated
+            cons = [replace(c, negated=not c.negated) for c in other.constraints]
+            head.constraints += parts_of_head(head, cons)
+            out.places += [replace(c, negated=not c.negated) for c in other.places]
+            return
         ClauseParser._exclude(out, other)  # "Under the window, the heater. Not the fan."
         return
     if other is not None and out.head_negated and other.kind == ONE:
@@ -108,7 +114,7 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
         out.places += more.places
         return
     if _same_thing(head, other):
-        head.constraints += more.pending + other.constraints
+        head.constraints += more.pending + parts_of_head(head, other.constraints)
         out.places += more.places + other.places
         if other.kind == OBJECT and head.kind in _VAGUE_HEADS:
             out.head = replace(other, constraints=head.constraints + other.constraints)

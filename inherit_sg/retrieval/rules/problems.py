@@ -17,6 +17,8 @@ from itertools import pairwise
 from inherit_sg.retrieval.constraints import FunctionConstraint
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab.colours import colour_words
 from inherit_sg.vocab.functions import problems
 from inherit_sg.vocab.lexicon import lexicon
 
@@ -34,8 +36,15 @@ _MODIFIERS = frozenset({"amod", "compound", "nmod", "det", "poss", "nummod"})
 
 def _terms(words: list[Word], heads_only: bool) -> set[str]:
     """Words and their lemmas (only those that do not modify a noun when ``heads_only``:
-    "the dark cabinets" states nothing dark), and every pair of words ("upper floor")."""
-    heads = [w for w in words if not heads_only or w.dep not in _MODIFIERS]
+    "the dark cabinets" states nothing dark, nor does "dark brown", a shade), and every
+    pair of words ("upper floor")."""
+    colours = colour_words()
+    heads = [
+        w
+        for k, w in enumerate(words)
+        if not heads_only
+        or (w.dep not in _MODIFIERS and not (k + 1 < len(words) and words[k + 1].text in colours))
+    ]
     terms = {w.text for w in heads} | {w.lemma for w in heads}
     texts = [w.text for w in words]
     lemmas = [w.lemma for w in words]
@@ -57,13 +66,40 @@ def _is_statement(words: list[Word]) -> bool:
     return not any(w.text in asks or w.lemma in asks for w in words)
 
 
+def _object_subject(words: list[Word]) -> set[str]:
+    """The statement's subject (with its compound and its head alone) when it names a
+    kind of object: "the wardrobe is tall and dark brown" describes a wardrobe, it
+    states no problem."""
+    for k, w in enumerate(words):
+        if w.dep not in ("nsubj", "nsubjpass") or w.pos not in ("NOUN", "PROPN"):
+            continue
+        j = k
+        while j > 0 and words[j - 1].dep == "compound":
+            j -= 1
+        forms = {
+            " ".join(x.text for x in words[j : k + 1]),
+            " ".join(x.lemma for x in words[j : k + 1]),
+            w.text,
+            w.lemma,
+        }
+        if any(object_vocab.canonical_label(f) for f in forms):
+            return forms
+        return set()
+    return set()
+
+
 def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
-    """The (function, likely kinds) a problem sentence implies, or None."""
+    """The (function, likely kinds) a problem sentence implies, or None. A statement
+    about a kind of object is a problem only where the problem names that subject
+    ("the dishes are dirty"), not otherwise ("the laundry basket is by the washer")."""
     states = _terms(words, heads_only=True)
     subjects = _terms(words, heads_only=False)
+    thing = _object_subject(words)
     loose: tuple[str, tuple[str, ...]] | None = None
     for problem in problems():
         if not states.intersection(problem.states):
+            continue
+        if thing and not thing.intersection(problem.subjects):
             continue
         if problem.subjects and subjects.intersection(problem.subjects):
             return problem.function, problem.kinds

@@ -5,7 +5,7 @@ its bundled English frequency dictionary plus every vocabulary word).
 
 Only clear cases are corrected: one edit (insert, delete, substitute or swap) for words
 of five letters or more, a swap of letters for shorter ones ("teh" → "the", "fidn" →
-"find"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay as
+"find"), and one edit that gives a vocabulary word for four-letter ones ("towl" → "towel"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay as
 written. The dictionary is loaded on the first word that needs it (about 0.5 s), so
 requests without typos never pay for it. Apostrophe-less contractions ("thats", "dont")
 are restored from ``lexicon.toml``.
@@ -90,9 +90,13 @@ def correct_word(word: str) -> str | None:
     if not found:
         return None
     vocab = vocabulary_words()
-    best = sorted(found, key=lambda s: (s.term not in vocab, -s.count))[0]
-    if len(word) < 5 and sorted(best.term) != sorted(word):
-        return None  # short words: only swapped letters are clear typos
+    # A dropped letter is the commonest slip: "towl" is a towel before it is a tool.
+    best = sorted(
+        found, key=lambda s: (s.term not in vocab, len(s.term) != len(word) + 1, -s.count)
+    )[0]
+    swapped = sorted(best.term) == sorted(word)
+    if len(word) < 5 and not swapped and (len(word) < 4 or best.term not in vocab):
+        return None  # short words: swapped letters, or one edit to a vocabulary word ("towl")
     return str(best.term)
 
 

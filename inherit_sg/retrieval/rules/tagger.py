@@ -245,6 +245,8 @@ def _single(word: Word, first: bool) -> Tok:
     elif word.pos in ("NOUN", "PROPN"):
         tok.tags["unk"] = word.lemma if word.plural else text
         tok.plural = word.plural
+    elif word.pos == "ADJ" and _part_word(word):
+        tok.tags["unk"] = text  # "with the backrest": spaCy reads the "-est" as a superlative
     elif word.pos == "ADJ":
         tok.tags["adj"] = ("other", word.lemma if word.tag == "JJ" else text)
     elif word.pos == "ADV":
@@ -254,6 +256,14 @@ def _single(word: Word, first: bool) -> Tok:
     elif word.pos == "X" and text.isalpha():
         tok.tags["unk"] = text  # a word spaCy does not know as anything else
     return tok
+
+
+def _part_word(word: Word) -> bool:
+    """Whether spaCy's adjective is a part noun of the vocabulary in a noun's place
+    ("a chair with a backrest")."""
+    return word.dep in ("pobj", "dobj", "nsubj", "attr", "conj") and object_vocab.is_part(
+        word.text, None
+    )
 
 
 # Readings after which a word needs no open-vocabulary reading of its own.
