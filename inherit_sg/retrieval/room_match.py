@@ -10,7 +10,8 @@ A room is matched by the first of these steps that finds it, and the reason says
 2. **alternatives**: the type is among the room's inferred types (``RoomNode.types``):
    fully when it is the best one, else graded by its probability relative to the best
    (:func:`alternative_sim`), so "the TV room" finds a room labelled "living room" that
-   holds a TV; a negated constraint weighs alternatives far less
+   holds a TV (when no room's label names the type: otherwise such rooms keep
+   :data:`UNLABELLED_SHARE`); a negated constraint weighs alternatives far less
    (:func:`negated_alternative_sim`): "not in the living room" keeps the family room;
 3. **aliases**: the request's room words, read through ``rooms.toml`` ("WC" → toilet),
    name its label or an alternative; or a type people name interchangeably with the one
@@ -51,6 +52,9 @@ ALT_MIN_P = 0.1
 # For a negated constraint ("not in the living room") an alternative weighs at most this,
 # in proportion to p / p_best: a room that only may be one never counts as one for sure.
 NEG_ALT_HI = 0.45
+# A room that only may be of the type asked for, when another room's label names it,
+# keeps this share of its similarity.
+UNLABELLED_SHARE = 0.6
 # A room of a type related to the one asked for matches at the pair's similarity times this.
 RELATED_SCALE = 0.75
 # Weaker embedding resemblance than this is ignored.
@@ -225,9 +229,11 @@ def match_rooms(
         found = _by_alias(rid, rtype, named, types, with_related=not negated)
         if found is not None and found[0] >= MIN_MATCH:
             out[rid] = found
+    qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
+    if not negated and qualifier is None and not beside:
+        _prefer_labelled(out)  # (a qualifier or a neighbour says which room instead)
     if not out:
         _by_embedding(out, words, snap, sim)
-    qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
     if qualifier is not None and rtype is not None:
         qualify_rooms(out, qualifier, rtype, snap)
     if beside:
@@ -235,6 +241,19 @@ def match_rooms(
     if opening:
         _add_openings(out, snap)
     return out
+
+
+def _prefer_labelled(out: Matches) -> None:
+    """When some room's label names the type asked for, rooms that only may be one
+    (an alternative, an alias's related type) keep :data:`UNLABELLED_SHARE` of their
+    similarity: "the family room" is the room the map calls one, before the living room
+    that might also be read as one. In place."""
+    labelled = {rid for rid, (_, why) in out.items() if "(label:" in why}
+    if not labelled:
+        return
+    for rid, (value, why) in list(out.items()):
+        if rid not in labelled:
+            out[rid] = (value * UNLABELLED_SHARE, f"{why}; another room is labelled so")
 
 
 def _add_openings(out: Matches, snap: MapSnapshot) -> None:

@@ -28,6 +28,10 @@ SMALL_BELOW = 0.93
 LARGE_ABOVE = 1.1
 # How fast a size word's match falls off outside its band (share of linear size).
 SIZE_SOFTNESS = 0.15
+# Inside the "large" / "small" band a size word scores 1 - IN_BAND_SPREAD at the band's
+# edge, rising to 1 at EXTREME_SPAN beyond it (ratio to the kind's median).
+IN_BAND_SPREAD = 0.1
+EXTREME_SPAN = 0.5
 # Fewest objects of a label that make a reference for relative size words (two: "the
 # large TV" of a pair is the bigger one).
 MIN_PEERS = 2
@@ -81,11 +85,20 @@ _BANDS = {
 
 
 def size_word_sim(ratio: float, word: str) -> float:
-    """1 inside the word's band of relative size, falling linearly to 0 at
-    ``SIZE_SOFTNESS`` outside it (words other than small / medium / large: 0)."""
+    """Near 1 inside the word's band of relative size (for "large" and "small" rising
+    from 1 - ``IN_BAND_SPREAD`` at the band's edge to 1 at ``EXTREME_SPAN`` beyond it),
+    falling linearly to 0 at ``SIZE_SOFTNESS`` outside it (words other than small /
+    medium / large: 0)."""
     band = _BANDS.get(word)
     if band is None:
         return 0.0
     lo, hi = band
     gap = max(lo - ratio, ratio - hi, 0.0)
-    return max(0.0, 1.0 - gap / SIZE_SOFTNESS)
+    if gap > 0.0:
+        return max(0.0, 1.0 - gap / SIZE_SOFTNESS)
+    # inside the band, the more extreme the surer ("the big sofa": the biggest of the big)
+    if word == "large":
+        return 1.0 - IN_BAND_SPREAD * (1.0 - min(1.0, (ratio - lo) / EXTREME_SPAN))
+    if word == "small":
+        return 1.0 - IN_BAND_SPREAD * (1.0 - min(1.0, (hi - ratio) / EXTREME_SPAN))
+    return 1.0

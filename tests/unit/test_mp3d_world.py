@@ -167,7 +167,11 @@ def test_walk_visits_every_room_and_stays_free(small: HouseWorld) -> None:
     looks = traj.activity.count("look")
     # one look-around per room at least; rooms that one stop does not see get more
     assert 40 < len(traj) < 300 and looks % 12 == 0 and 4 * 12 <= looks <= 4 * 4 * 12
-    looking_up = [p for p, a in zip(traj.poses, traj.activity, strict=True) if a == "look" and p.rotation[2, 2] > 0.2]
+    looking_up = [
+        p
+        for p, a in zip(traj.poses, traj.activity, strict=True)
+        if a == "look" and p.rotation[2, 2] > 0.2
+    ]
     assert len(looking_up) == looks // 2  # every other frame of a look-around tilts up
     space = small.spaces[0]
     free = free_space(space, small.walls.walls)

@@ -1,4 +1,4 @@
-"""The offline parser on the development set (tests/data/dev_requests, 1230 requests
+"""The offline parser on the development set (tests/data/dev_requests, 1530 requests
 written the way people talk; see docs/dev_requests.md): targets and negations right
 at least 95 % of the time, no negation made up beyond a handful, no crash, and each
 constraint kind mostly found."""

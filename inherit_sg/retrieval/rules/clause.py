@@ -73,6 +73,12 @@ _BESIDE = frozenset({"next to", "by", "near", "beside", "at", "in front of", "cl
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
+# Viewpoint verbs that take the place as their object ("enter the kitchen, …"); the others
+# name a place through a preposition ("stand at", "come through"), and with an object they
+# are errands ("move the ottoman", "get the towel").
+_TRANSITIVE_VIEW = frozenset({"enter", "pass", "reach", "climb", "approach"})
+
+
 @dataclass
 class Clause:
     """What the top level found."""
@@ -370,6 +376,10 @@ class ClauseParser(Grammar):
                 before is not None and before.lemma in ("go", "come") and cue.tag == "VB"
             ):
                 return False  # "go get the basket from …": an errand, not a standpoint
+            if after is not None and after.has("det") and cue.lemma not in _TRANSITIVE_VIEW:
+                return False  # "move the ottoman, …", "get the towel from …": an errand
+            if cue.lemma in _SWITCH_VERBS and after is not None and after.text in ("on", "off"):
+                return False  # "turn on the TV that's on the stand": a switch, not a turn
             kind = "from"
         else:
             return False
@@ -637,16 +647,25 @@ class ClauseParser(Grammar):
     def _next_errand(self, out: Clause, np: NP, neg: bool, j: int) -> bool:
         """ "Go to the sofa and pick up the remote", "… and find the basket": the object
         of a second command (its verb at token ``j``) after "and" is the target, found
-        near the first one."""
+        near the first one (in it, when the first one is a room)."""
         head = out.head
-        if neg or head is None or head.kind != OBJECT or np.kind != OBJECT or not np.labels:
+        if neg or head is None or head.kind not in (OBJECT, ROOM) or np.kind != OBJECT:
+            return False
+        if not np.labels:
             return False
         verb = self.toks[j] if j >= 0 else None
         before = self.toks[j - 1] if j >= 1 else None
-        if verb is None or before is None or not before.has("and"):
+        if verb is None or before is None or not before.has("and", "comma"):
             return False
         if not (verb.has("seek", "overb", "fverb") or verb.tag == "VB"):
             return False
+        if before.has("comma") and verb.tag != "VB":
+            return False  # "we're out of toilet paper, check the cabinet …": a command
+        if head.kind == ROOM:  # "go to the TV room and turn on the TV": the TV, in that room
+            out.places.append(self._place(head, False))
+            self.notes.append(f"{np.noun!r} is the target; {head.noun!r} is where")
+            out.head = np
+            return True
         self._sought_near_head(out, np, "is the target")
         return True
 

@@ -42,6 +42,10 @@ _VERB_CONTEXT = (
     "to", "modal", "seeker", "and", "or", "for", "while", "rel", "wh", "comma", "overb", "sub",
     "neg",
 )  # fmt: skip
+# Verbs that put their object somewhere: with a named destination, that is the target.
+_PLACING_VERBS = frozenset(
+    {"put", "place", "set", "drop", "throw", "toss", "dump", "stick", "stash", "hang", "chuck"}
+)
 _VERB_FILLERS = ("want", "need", "like", "possible", "wish")
 # Prepositions inside a verb's object ("a cup of tea", "a place for my coat").
 _OBJECT_PREPOSITIONS = frozenset({"of", "for", "to", "with", "about"})
@@ -133,6 +137,11 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
+    destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
+    if destination is not None:
+        # "put this in the recycling bin by the back door": where it goes is the target
+        g.notes.append(f"'{tok.text} … {destination.noun}': the destination is the target")
+        return [], destination
     if named and tok.lemma in _KEEP_VERBS and _asks_where(g, start):
         assert obj is not None
         if not has_own_sense(verb, words, lemmas):
@@ -165,6 +174,30 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
     where = [c for c in obj.constraints if _places_target(c, obj)] if obj is not None else []
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
+
+
+def _destination(obj: NP | None) -> NP | None:
+    """The named thing a placing verb's object goes in or on ("put this in the bin"), as a
+    phrase of its own with its own modifiers; None when there is none."""
+    if obj is None:
+        return None
+    for con in obj.constraints:
+        if (
+            isinstance(con, RelationConstraint)
+            and not con.negated
+            and con.predicate in ("inside", "on")
+            and con.landmark.target.labels
+            and con.landmark.target.noun
+        ):
+            lm = con.landmark
+            return NP(
+                kind=OBJECT,
+                labels=list(lm.target.labels),
+                words=lm.target.noun.split(),
+                constraints=list(lm.constraints),
+                known=True,
+            )
+    return None
 
 
 def _places_target(con: Constraint, obj: NP) -> bool:
