@@ -36,6 +36,8 @@ PARSE_JSON = ROOT / "bench" / "results" / "parse.json"
 MP3D_REQUESTS_JSON = ROOT / "bench" / "results" / "mp3d_requests.json"
 MP3D_INDEPENDENT = ROOT / "bench" / "data" / "mp3d_requests_independent.jsonl"
 MP3D_INDEPENDENT_JSON = ROOT / "bench" / "results" / "mp3d_requests_independent.json"
+MP3D_THIRD = ROOT / "bench" / "data" / "mp3d_requests_third.jsonl"
+MP3D_THIRD_JSON = ROOT / "bench" / "results" / "mp3d_requests_third.json"
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
 DOCS = ROOT / "docs"
@@ -166,6 +168,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("parse", PARSE_JSON),
             ("mp3d", MP3D_REQUESTS_JSON),
             ("mp3d_independent", MP3D_INDEPENDENT_JSON),
+            ("mp3d_third", MP3D_THIRD_JSON),
             ("mp3d_rooms", MP3D_ROOMS_JSON),
             ("mp3d_objects", MP3D_OBJECTS_JSON),
             ("hostile", RESULTS.parent / "hostile.json"),
@@ -179,7 +182,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
 
 
 def run_request_sets(work: Path) -> None:
-    """The parser's development set and the two MP3D human-written request sets (each script
+    """The parser's development set and the three MP3D human-written request sets (each script
     writes its JSON under bench/results/)."""
     print("== request parsing (bench/parse.py --dev)", flush=True)
     subprocess.run([sys.executable, str(ROOT / "bench" / "parse.py"), "--dev"], check=True)
@@ -194,6 +197,14 @@ def run_request_sets(work: Path) -> None:
             [
                 sys.executable, str(script), "--work", str(work / "mp3d-requests"),
                 "--requests", str(MP3D_INDEPENDENT), "--out", str(MP3D_INDEPENDENT_JSON),
+            ],
+            check=True,
+        )  # fmt: skip
+        print("== MP3D blind third requests (bench/mp3d_requests.py --requests …)", flush=True)
+        subprocess.run(
+            [
+                sys.executable, str(script), "--work", str(work / "mp3d-requests"),
+                "--requests", str(MP3D_THIRD), "--out", str(MP3D_THIRD_JSON),
             ],
             check=True,
         )  # fmt: skip

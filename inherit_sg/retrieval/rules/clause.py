@@ -76,6 +76,9 @@ _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back
 # Viewpoint verbs that take the place as their object ("enter the kitchen, …"); the others
 # name a place through a preposition ("stand at", "come through"), and with an object they
 # are errands ("move the ottoman", "get the towel").
+_TIME_WORDS = frozenset({"before", "after", "once", "until"})
+_PEOPLE = frozenset({"i", "we", "you", "they", "he", "she"})
+_COUNTING = frozenset({"counting", "starting", "going", "numbering", "beginning", "count"})
 _TRANSITIVE_VIEW = frozenset({"enter", "pass", "reach", "climb", "approach"})
 
 
@@ -227,6 +230,10 @@ class ClauseParser(Grammar):
         out = out if out is not None else Clause()
         while (tok := self.peek()) is not None:
             opener = view_opener(self)
+            if self._clause_start() and self._counting_origin():
+                continue  # "counting from the curtains, the third chair"
+            if self._time_clause(out):
+                continue  # "… before I head out the front door"
             if (opener or self._clause_start()) and self._viewpoint(out):
                 continue  # "… the left one if you're facing the headboard"
             if self._clause_start() and self._frame():
@@ -428,6 +435,49 @@ class ClauseParser(Grammar):
         if self.at("comma"):
             self.advance()
         self.view_end = self.i
+        return True
+
+    def _time_clause(self, out: Clause) -> bool:
+        """ "before I head out the front door", "after we get to the kitchen": when the
+        speaker does something is context, not the target; a thing it names is where the
+        target likely is (a soft "near")."""
+        if self.text_at() not in _TIME_WORDS or self.text_at(1) not in _PEOPLE:
+            return False
+        self.i += 2
+        mark: NP | None = None
+        while (tok := self.peek()) is not None and not tok.has("comma", "and", "but"):
+            if self.np_start():
+                np = self.parse_np(landmark=True)
+                if np is not None and np.kind == OBJECT and np.labels:
+                    mark = np
+                if np is not None:
+                    continue
+            self.advance()
+        if mark is not None:
+            out.pending.append(
+                RelationConstraint(
+                    predicate="near", landmark=mark.landmark(), weight=self.weight("relation") / 2,
+                    text=f"near {mark.noun}",
+                )
+            )  # fmt: skip
+        self.notes.append("a time clause ('before I …') is context, not the target")
+        return True
+
+    def _counting_origin(self) -> bool:
+        """ "Counting from the curtains, the third chair …": the landmark an ordinal that
+        follows is counted from (kept in ``count_origin``)."""
+        if self.text_at() not in _COUNTING or self.text_at(1) != "from":
+            return False
+        snap = self.state()
+        self.i += 2
+        mark = self.parse_np(landmark=True) if self.np_start() else None
+        if mark is None or mark.kind != OBJECT or not mark.labels:
+            self.restore(snap)
+            return False
+        self.count_origin = mark.landmark()
+        self.notes.append(f"ordinals are counted from the {mark.noun}")
+        if self.at("comma"):
+            self.advance()
         return True
 
     def _entering(self, cue: Tok, start: int) -> bool:

@@ -60,6 +60,8 @@ class Cursor:
         # and a room type ("the WC", "the closet") is the room
         self.place_object = False
         self.group: Any = None  # a pending group phrase ("in the row of lockers")
+        # the landmark of a leading "counting from the curtains, …" for the next ordinal
+        self.count_origin: Any = None
 
     def peek(self, k: int = 0) -> Tok | None:
         """The token ``k`` places ahead, or None past the end."""

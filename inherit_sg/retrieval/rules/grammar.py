@@ -360,6 +360,8 @@ class Grammar(Cursor):
             np.superlative, np.direction = None, None
         if np.direction is not None and np.ordinal is None and np.superlative is None:
             np.ordinal = 1  # "the one on the left": the first from the left
+        if np.ordinal is not None and np.counted_from is None and np.direction is None:
+            np.counted_from, self.count_origin = self.count_origin, None
         if np.ordinal is not None:
             side = f" from the {np.direction}" if np.direction else ""
             mark = np.counted_from
