@@ -11,26 +11,30 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse
 
 from api import live, security, views
 from api.errors import install_error_handlers
-from api.models import (
-    CypherRequest,
-    CypherResponse,
-    HealthResponse,
-    ObjectDetail,
-    ObjectPage,
-    QueryRequest,
-)
-from api.objects import get_object, list_objects
+from api.models import CypherRequest, CypherResponse, HealthResponse, QueryRequest
 from api.state import Registry, resolve_maps, served_map
 from api.views import FloorQ, LabelQ, Limit, Offset, RoomQ
 from inherit_sg import __version__
 from inherit_sg.config import Config, load_config
 from inherit_sg.json_values import jsonable
+from inherit_sg.reads.models import ObjectDetail, ObjectPage
+
+
+def with_image_links(detail: ObjectDetail, map_name: str) -> ObjectDetail:
+    """``detail`` with each keyframe's JPEG path under ``/v1/maps/{map_name}``."""
+    base = f"/v1/maps/{map_name}/keyframes"
+    frames = [
+        kf.model_copy(update={"image": f"{base}/{quote(kf.id, safe=':')}.jpg"})
+        for kf in detail.keyframes
+    ]
+    return detail.model_copy(update={"keyframes": frames})
 
 
 def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> FastAPI:
@@ -130,8 +134,8 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         """A page of objects, ordered by id."""
         served = served_map(request, map)
         with served.lock:
-            return list_objects(
-                served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
+            return served.require().objects(
+                floor=floor, room=room, label=label, limit=limit, offset=offset
             )
 
     @app.get("/v1/maps/{map}/objects/{object_id}")
@@ -139,7 +143,8 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         """One object with its relations and hierarchy path; 404 when absent."""
         served = served_map(request, map)
         with served.lock:
-            return get_object(served.require(), object_id, map)
+            detail = served.require().object(object_id)
+        return with_image_links(detail, map)
 
     app.include_router(live.router)
     views.install(app)

@@ -10,11 +10,8 @@ from fastapi.responses import FileResponse, Response
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel
 
-from api import pictures
-from api.hierarchy import build_hierarchy
-from api.listing import list_areas, list_floors, list_rooms
 from api.state import Registry, served_map
-from api.view_models import AreaPage, FloorPage, Hierarchy, RoomPage
+from inherit_sg.reads.models import AreaPage, FloorPage, Hierarchy, RoomPage
 
 STATIC = Path(__file__).resolve().parent / "static"
 
@@ -69,7 +66,7 @@ def install(app: FastAPI) -> None:
         """A page of floors (by id) with room and object counts."""
         served = served_map(request, map)
         with served.lock:
-            return list_floors(served.require(), label=label, limit=limit, offset=offset)
+            return served.require().floors(label=label, limit=limit, offset=offset)
 
     @app.get("/v1/maps/{map}/rooms")
     def rooms(
@@ -83,9 +80,7 @@ def install(app: FastAPI) -> None:
         """A page of rooms (by id) with summary, floor, best view and child counts."""
         served = served_map(request, map)
         with served.lock:
-            return list_rooms(
-                served.require(), floor=floor, label=label, limit=limit, offset=offset
-            )
+            return served.require().rooms(floor=floor, label=label, limit=limit, offset=offset)
 
     @app.get("/v1/maps/{map}/areas")
     def areas(
@@ -100,8 +95,8 @@ def install(app: FastAPI) -> None:
         """A page of functional areas (by id) with summary, room, floor and object count."""
         served = served_map(request, map)
         with served.lock:
-            return list_areas(
-                served.require(), floor=floor, room=room, label=label, limit=limit, offset=offset
+            return served.require().areas(
+                floor=floor, room=room, label=label, limit=limit, offset=offset
             )
 
     @app.get("/v1/maps/{map}/hierarchy")
@@ -109,7 +104,7 @@ def install(app: FastAPI) -> None:
         """Floors → rooms → areas → objects, ids and labels only."""
         served = served_map(request, map)
         with served.lock:
-            return build_hierarchy(served.require())
+            return served.require().hierarchy()
 
     @app.get(
         "/v1/maps/{map}/bev.png",
@@ -131,12 +126,9 @@ def install(app: FastAPI) -> None:
         """The bird's-eye view of one floor as PNG."""
         served = served_map(request, map)
         with served.lock:
-            if source == "stored":
-                return Response(
-                    pictures.stored_bev(served.require(), floor), media_type="image/png"
-                )
-            png, tf = pictures.graph_bev(served.require(), floor)
-        return Response(png, media_type="image/png", headers=tf.headers())
+            png, tf = served.require().bev_png(floor, stored=source == "stored")
+        headers = tf.headers() if tf is not None else None
+        return Response(png, media_type="image/png", headers=headers)
 
     @app.get(
         "/v1/maps/{map}/keyframes/{keyframe_id}.jpg",
@@ -147,7 +139,7 @@ def install(app: FastAPI) -> None:
         """One keyframe's JPEG (ids like ``kf:session:1:25``, URL-encoded or not)."""
         served = served_map(request, map)
         with served.lock:
-            jpeg = pictures.keyframe_jpeg(served.require(), keyframe_id)
+            jpeg = served.require().keyframe_jpeg(keyframe_id)
         return Response(jpeg, media_type="image/jpeg")
 
     @app.get(
@@ -160,8 +152,8 @@ def install(app: FastAPI) -> None:
         served = served_map(request, map)
         with served.lock:
             service = served.require()
-            kf_id = pictures.best_view(service, node_id)
-            jpeg = pictures.keyframe_jpeg(service, kf_id)
+            kf_id = service.best_view(node_id)
+            jpeg = service.keyframe_jpeg(kf_id)
         return Response(jpeg, media_type="image/jpeg", headers={"X-Keyframe-Id": kf_id})
 
     app.mount("/static", StaticFiles(directory=STATIC), name="static")

@@ -20,6 +20,15 @@ if TYPE_CHECKING:
     import numpy as np
 
     from inherit_sg.mapping.live import LiveSession
+    from inherit_sg.reads.bev import BevTransform
+    from inherit_sg.reads.models import (
+        AreaPage,
+        FloorPage,
+        Hierarchy,
+        ObjectDetail,
+        ObjectPage,
+        RoomPage,
+    )
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
     from inherit_sg.retrieval.viewer import ViewerPose
@@ -96,6 +105,89 @@ class MapService:
                 "total": stats["bytes_total"],
             },
         }
+
+    def floors(self, *, label: str | None = None, limit: int = 100, offset: int = 0) -> FloorPage:
+        """A page of floors ordered by id, optionally by label, with room and object counts."""
+        from inherit_sg.reads.listing import list_floors
+
+        return list_floors(self, label=label, limit=limit, offset=offset)
+
+    def rooms(
+        self,
+        *,
+        floor: str | None = None,
+        label: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> RoomPage:
+        """A page of rooms ordered by id, filtered by floor id and label, each with its
+        inferred types and child counts."""
+        from inherit_sg.reads.listing import list_rooms
+
+        return list_rooms(self, floor=floor, label=label, limit=limit, offset=offset)
+
+    def areas(
+        self,
+        *,
+        floor: str | None = None,
+        room: str | None = None,
+        label: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> AreaPage:
+        """A page of functional areas ordered by id, filtered by floor, room and label."""
+        from inherit_sg.reads.listing import list_areas
+
+        return list_areas(self, floor=floor, room=room, label=label, limit=limit, offset=offset)
+
+    def objects(
+        self,
+        *,
+        floor: str | None = None,
+        room: str | None = None,
+        label: str | None = None,
+        limit: int = 100,
+        offset: int = 0,
+    ) -> ObjectPage:
+        """A page of objects ordered by id, filtered by floor id, room id and label."""
+        from inherit_sg.reads.objects import list_objects
+
+        return list_objects(self, floor=floor, room=room, label=label, limit=limit, offset=offset)
+
+    def object(self, object_id: str) -> ObjectDetail:
+        """One object with its relations, its area → room → floor path and its keyframes;
+        NodeNotFoundError when there is none."""
+        from inherit_sg.reads.objects import get_object
+
+        return get_object(self, object_id)
+
+    def hierarchy(self) -> Hierarchy:
+        """The floors → rooms → areas → objects tree (ids and labels)."""
+        from inherit_sg.reads.hierarchy import build_hierarchy
+
+        return build_hierarchy(self)
+
+    def bev_png(self, floor_id: str, *, stored: bool = False) -> tuple[bytes, BevTransform | None]:
+        """One floor's bird's-eye view as PNG bytes: drawn from the graph with its
+        pixel ↔ world transform, or (``stored``) the picture ``map build`` wrote, whose
+        transform is not recorded."""
+        from inherit_sg.reads import pictures
+
+        if stored:
+            return pictures.stored_bev(self, floor_id), None
+        return pictures.graph_bev(self, floor_id)
+
+    def keyframe_jpeg(self, keyframe_id: str) -> bytes:
+        """The stored JPEG of one keyframe; NodeNotFoundError when there is none."""
+        from inherit_sg.reads.pictures import keyframe_jpeg
+
+        return keyframe_jpeg(self, keyframe_id)
+
+    def best_view(self, node_id: str) -> str:
+        """The keyframe id of an object's or a room's best view."""
+        from inherit_sg.reads.pictures import best_view
+
+        return best_view(self, node_id)
 
     def cypher(
         self,
@@ -312,6 +404,7 @@ def build_map(
     import itertools
 
     from ingest.readers import open_dataset
+    from inherit_sg.mapping.bev_pictures import write_bev_pictures
     from inherit_sg.mapping.orchestrator import Mapper
     from inherit_sg.mapping.sessions import new_session
 
@@ -346,28 +439,3 @@ def build_map(
     out["map"] = str(path)
     out["bev"] = [str(p) for p in pictures]
     return out
-
-
-def write_bev_pictures(mapper: Any, map_dir: Path) -> list[Path]:
-    """One BEV PNG per floor under ``<map>/bev/``."""
-    out_dir = map_dir / "bev"
-    out_dir.mkdir(exist_ok=True)
-    from inherit_sg.model import RoomNode
-
-    labels = {
-        n.id: f"{n.label} ({n.id.partition(':')[2]})"
-        for n in mapper.graph.nodes()
-        if isinstance(n, RoomNode)
-    }
-    written = []
-    for floor in mapper.geometry.floors():
-        level = floor.level
-        try:
-            written.append(
-                mapper.geometry.save_bev(
-                    out_dir / f"floor_{level}.png", floor.id, refined=True, labels=labels
-                )
-            )
-        except ValueError:
-            continue
-    return written

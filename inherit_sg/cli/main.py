@@ -12,7 +12,16 @@ from typing import Annotated, Any
 import typer
 
 from inherit_sg import __version__
-from inherit_sg.cli import bench_cmd, demo_cmd, map_cmd, parse_cmd, query_cmd, serve_cmd, sim
+from inherit_sg.cli import (
+    bench_cmd,
+    demo_cmd,
+    map_cmd,
+    parse_cmd,
+    query_cmd,
+    reads_cmd,
+    serve_cmd,
+    sim,
+)
 from inherit_sg.cli.output import handle_errors, print_json, print_table
 from inherit_sg.vocab import TABLES
 
@@ -31,6 +40,8 @@ app.command("demo")(demo_cmd.demo)
 app.command("query")(query_cmd.query)
 app.command("serve")(serve_cmd.serve)
 app.command("bench")(bench_cmd.bench)
+app.command("ls")(reads_cmd.ls)
+app.command("show")(reads_cmd.show)
 
 MapOption = Annotated[Path, typer.Option("--map", "-m", help="Map directory.")]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON.")]

@@ -298,7 +298,7 @@ class LiveSession:
         """Stop intake, drain the queues, run the final update, persist the session and
         write ``<map>/bev/floor_<level>.png``; the mapping summary. A failed session is
         finished as far as it can be and its error raised."""
-        from inherit_sg.facade import write_bev_pictures
+        from inherit_sg.mapping.bev_pictures import write_bev_pictures
 
         with self._lock:
             if self.state == FINISHED and self.summary is not None:

@@ -17,7 +17,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from api.app import create_app
-from api.bev import (
+from inherit_sg.reads.bev import (
     BACKGROUND,
     OBJECT_DOT,
     PALETTE,

@@ -4,11 +4,14 @@ stored) and keyframe JPEGs (by id, or the best view of an object or room)."""
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
-from api.bev import BevObject, BevRoom, BevTransform, encode_png, render_bev
 from inherit_sg.errors import InputError, NodeNotFoundError
-from inherit_sg.facade import MapService
 from inherit_sg.model import RoomMask
+from inherit_sg.reads.bev import BevObject, BevRoom, BevTransform, encode_png, render_bev
+
+if TYPE_CHECKING:
+    from inherit_sg.facade import MapService
 
 # graph keys: letters, digits and ``_ . : -`` (e.g. ``kf:session:1:25``, ``floor:0``)
 NODE_KEY = re.compile(r"^[A-Za-z0-9_.:-]{1,200}$")

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import json
-from typing import Any
-from urllib.parse import quote
+from typing import TYPE_CHECKING, Any
 
-from api.listing import label_filter, page_of
-from api.models import (
+from inherit_sg.errors import NodeNotFoundError
+from inherit_sg.reads.listing import label_filter, page_of
+from inherit_sg.reads.models import (
     HierarchyStep,
     KeyframeRef,
     ObjectDetail,
@@ -15,8 +15,9 @@ from api.models import (
     ObjectSummary,
     RelationEdge,
 )
-from inherit_sg.errors import NodeNotFoundError
-from inherit_sg.facade import MapService
+
+if TYPE_CHECKING:
+    from inherit_sg.facade import MapService
 
 _FIELDS = "o.id, o.label, o.position, o.room_id, o.floor_id, o.description, o.status"
 
@@ -46,9 +47,9 @@ def list_objects(
     return ObjectPage(objects=objects, total=int(total), limit=limit, offset=offset)
 
 
-def get_object(service: MapService, object_id: str, map_name: str) -> ObjectDetail:
+def get_object(service: MapService, object_id: str) -> ObjectDetail:
     """One object with its RELATION edges, its area → room → floor path and the keyframes
-    it was seen in (image links under ``/v1/maps/{map_name}``)."""
+    it was seen in; NodeNotFoundError when the map has no such object."""
     found = service.cypher(
         f"MATCH (o:Object) WHERE o.id = $id "
         f"RETURN {_FIELDS}, o.bbox_min, o.bbox_max, o.area_id, o.best_keyframe",
@@ -94,11 +95,11 @@ def get_object(service: MapService, object_id: str, map_name: str) -> ObjectDeta
         relations=relations,
         hierarchy=hierarchy,
         best_keyframe=best_keyframe or None,
-        keyframes=_keyframes(service, object_id, map_name),
+        keyframes=_keyframes(service, object_id),
     )
 
 
-def _keyframes(service: MapService, object_id: str, map_name: str) -> list[KeyframeRef]:
+def _keyframes(service: MapService, object_id: str) -> list[KeyframeRef]:
     rows = service.cypher(
         "MATCH (o:Object)-[e:SEEN_IN]->(k:Keyframe) WHERE o.id = $id "
         "RETURN k.id, k.session_id, k.timestamp, k.floor_id, e.props "
@@ -106,16 +107,8 @@ def _keyframes(service: MapService, object_id: str, map_name: str) -> list[Keyfr
         {"id": object_id},
         max_rows=None,
     ).rows
-    base = f"/v1/maps/{map_name}/keyframes"
     return [
-        KeyframeRef(
-            id=kid,
-            session_id=sid,
-            timestamp=ts,
-            floor_id=fid,
-            image=f"{base}/{quote(kid, safe=':')}.jpg",
-            detection=_props(props),
-        )
+        KeyframeRef(id=kid, session_id=sid, timestamp=ts, floor_id=fid, detection=_props(props))
         for kid, sid, ts, fid, props in rows
     ]
 

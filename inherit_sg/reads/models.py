@@ -1,7 +1,11 @@
-"""Response models of the listing routes the web viewer uses (floors, rooms, areas and
-the whole hierarchy)."""
+"""Typed results of the map's reads: listings of floors, rooms, areas and objects (with
+filters and paging), an object's detail and the floors → rooms → areas → objects tree.
+:class:`~inherit_sg.facade.MapService` returns them; the CLI prints them and REST sends
+them as they are (their JSON schema is the routes' response schema)."""
 
 from __future__ import annotations
+
+from typing import Any
 
 from pydantic import BaseModel, Field
 
@@ -95,3 +99,68 @@ class Hierarchy(BaseModel):
 
     floors: list[TreeNode]
     unassigned: list[TreeNode]
+
+
+class ObjectSummary(BaseModel):
+    """One object row of the public ``Object`` table."""
+
+    id: str
+    label: str
+    position: list[float] | None
+    room_id: str | None
+    floor_id: str | None
+    description: str | None
+    status: str | None
+
+
+class ObjectPage(BaseModel):
+    """A page of objects with the total that matched the filters."""
+
+    objects: list[ObjectSummary]
+    total: int
+    limit: int
+    offset: int
+
+
+class RelationEdge(BaseModel):
+    """A ``RELATION`` edge touching an object."""
+
+    direction: str = Field(description="'out' when the object is the subject, else 'in'.")
+    predicate: str
+    confidence: float | None
+    other_id: str
+    other_label: str
+
+
+class KeyframeRef(BaseModel):
+    """A keyframe an object was detected in (a ``SEEN_IN`` edge)."""
+
+    id: str
+    session_id: str | None
+    timestamp: float | None
+    floor_id: str | None
+    image: str | None = Field(
+        None, description="Path of the keyframe's JPEG under the map (REST answers)."
+    )
+    detection: dict[str, Any] | None = Field(
+        None, description="What the segmenter saw there: label, score, pixel bbox."
+    )
+
+
+class HierarchyStep(BaseModel):
+    """One ancestor of an object (area, room or floor)."""
+
+    layer: str
+    id: str
+    label: str
+
+
+class ObjectDetail(ObjectSummary):
+    """An object with its relations, its area → room → floor path and its keyframes."""
+
+    bbox_min: list[float] | None
+    bbox_max: list[float] | None
+    relations: list[RelationEdge]
+    hierarchy: list[HierarchyStep]
+    best_keyframe: str | None = Field(None, description="Keyframe of the object's best view.")
+    keyframes: list[KeyframeRef] = Field(default_factory=list, description="Oldest first.")

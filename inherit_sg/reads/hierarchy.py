@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
-from api.view_models import Hierarchy, TreeNode
-from inherit_sg.facade import MapService
+from inherit_sg.reads.models import Hierarchy, TreeNode
+
+if TYPE_CHECKING:
+    from inherit_sg.facade import MapService
 
 _DIGITS = re.compile(r"(\d+)")
 

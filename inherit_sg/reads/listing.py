@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from api.view_models import (
+from inherit_sg.reads.models import (
     AreaItem,
     AreaPage,
     FloorItem,
@@ -13,8 +13,10 @@ from api.view_models import (
     RoomPage,
     RoomTypeItem,
 )
-from inherit_sg.facade import MapService
 from inherit_sg.store.codec import room_types_from_json
+
+if TYPE_CHECKING:
+    from inherit_sg.facade import MapService
 
 Filters = list[tuple[str, str, Any]]
 
