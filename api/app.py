@@ -10,7 +10,6 @@ from __future__ import annotations
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
-from typing import Any
 from urllib.parse import quote
 
 from fastapi import FastAPI, Request
@@ -24,7 +23,8 @@ from api.views import FloorQ, LabelQ, Limit, Offset, RoomQ
 from inherit_sg import __version__
 from inherit_sg.config import Config, load_config
 from inherit_sg.json_values import jsonable
-from inherit_sg.reads.models import ObjectDetail, ObjectPage
+from inherit_sg.reads.models import MapStats, ObjectDetail, ObjectPage
+from inherit_sg.retrieval.result_models import QueryResponse
 
 
 def with_image_links(detail: ObjectDetail, map_name: str) -> ObjectDetail:
@@ -73,14 +73,14 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         return JSONResponse(body.model_dump(), status_code=200 if ready else 503)
 
     @app.get("/v1/maps/{map}")
-    def map_stats(request: Request, map: str) -> dict[str, Any]:
+    def map_stats(request: Request, map: str) -> MapStats:
         """Counts per table, sessions and bytes on disk."""
         served = served_map(request, map)
         with served.lock:
-            return served.require().stats()
+            return MapStats.model_validate(served.require().stats())
 
-    @app.post("/v1/maps/{map}/query")
-    def query(request: Request, map: str, body: QueryRequest) -> dict[str, Any]:
+    @app.post("/v1/maps/{map}/query", response_model_exclude_unset=True)
+    def query(request: Request, map: str, body: QueryRequest) -> QueryResponse:
         """Answer a natural-language request (the query result JSON of the CLI)."""
         served = served_map(request, map)
         registry: Registry = request.app.state.registry
@@ -100,7 +100,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         out = result.to_dict()
         if body.conversation_id is not None:
             out["conversation_id"] = body.conversation_id
-        return out
+        return QueryResponse.model_validate(out)
 
     @app.post("/v1/maps/{map}/cypher")
     def cypher(request: Request, map: str, body: CypherRequest) -> CypherResponse:

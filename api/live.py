@@ -9,7 +9,7 @@ one multipart RGB-D frame, ``GET …/sessions/{sid}`` reports its counters and
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated
 
 from fastapi import APIRouter, Body, File, Form, Request, UploadFile
 
@@ -24,6 +24,7 @@ from api.live_frames import (
 from api.live_models import FrameAccepted, SessionCreated, SessionRequest
 from api.state import served_map
 from inherit_sg.errors import FrameError
+from inherit_sg.reads.models import LiveStatus, MappingSummary
 
 router = APIRouter()
 
@@ -77,13 +78,13 @@ def post_frame(
 
 
 @router.get("/v1/maps/{map}/sessions/{sid}")
-def session_status(request: Request, map: str, sid: str) -> dict[str, Any]:
+def session_status(request: Request, map: str, sid: str) -> LiveStatus:
     """Counters of a running or finished live session."""
-    return served_map(request, map).live_status(sid)
+    return LiveStatus.model_validate(served_map(request, map).live_status(sid))
 
 
 @router.post("/v1/maps/{map}/sessions/{sid}/finish")
-def finish_session(request: Request, map: str, sid: str) -> dict[str, Any]:
+def finish_session(request: Request, map: str, sid: str) -> MappingSummary:
     """Finish the session: final update, everything persisted, BEV pictures written under
     ``<map>/bev/``; answers the mapping summary."""
-    return served_map(request, map).finish_live(sid)
+    return MappingSummary.model_validate(served_map(request, map).finish_live(sid))

@@ -20,6 +20,8 @@ Offset = Annotated[int, Query(ge=0)]
 FloorQ = Annotated[str | None, Query(description="Floor id, e.g. floor:0.")]
 RoomQ = Annotated[str | None, Query(description="Room id.")]
 LabelQ = Annotated[str | None, Query(description="Label (any case).")]
+# the response schema of the picture routes: the image's bytes
+BINARY = {"type": "string", "format": "binary"}
 
 
 class MapEntry(BaseModel):
@@ -109,7 +111,7 @@ def install(app: FastAPI) -> None:
     @app.get(
         "/v1/maps/{map}/bev.png",
         response_class=Response,
-        responses={200: {"content": {"image/png": {}}}},
+        responses={200: {"content": {"image/png": {"schema": BINARY}}}},
     )
     def bev(
         request: Request,
@@ -133,7 +135,7 @@ def install(app: FastAPI) -> None:
     @app.get(
         "/v1/maps/{map}/keyframes/{keyframe_id}.jpg",
         response_class=Response,
-        responses={200: {"content": {"image/jpeg": {}}}},
+        responses={200: {"content": {"image/jpeg": {"schema": BINARY}}}},
     )
     def keyframe(request: Request, map: str, keyframe_id: str) -> Response:
         """One keyframe's JPEG (ids like ``kf:session:1:25``, URL-encoded or not)."""
@@ -145,7 +147,7 @@ def install(app: FastAPI) -> None:
     @app.get(
         "/v1/maps/{map}/nodes/{node_id}/view.jpg",
         response_class=Response,
-        responses={200: {"content": {"image/jpeg": {}}}},
+        responses={200: {"content": {"image/jpeg": {"schema": BINARY}}}},
     )
     def best_view(request: Request, map: str, node_id: str) -> Response:
         """The best-view keyframe of an object or room; its id in ``X-Keyframe-Id``."""

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 
 class FloorItem(BaseModel):
@@ -164,3 +164,65 @@ class ObjectDetail(ObjectSummary):
     hierarchy: list[HierarchyStep]
     best_keyframe: str | None = Field(None, description="Keyframe of the object's best view.")
     keyframes: list[KeyframeRef] = Field(default_factory=list, description="Oldest first.")
+
+
+class SessionRecord(BaseModel):
+    """One mapping session of a map."""
+
+    model_config = ConfigDict(extra="allow")
+
+    id: str
+    name: str
+    frames: int
+    keyframes: int
+
+
+class MapStats(BaseModel):
+    """Counts per table, sessions and bytes on disk of a map, with its identity, the
+    vocabulary it was mapped with and its label space."""
+
+    model_config = ConfigDict(extra="allow")
+
+    path: str
+    schema_version: int
+    created: str | None
+    text_embedder: str | None
+    visual_encoder: str | None
+    vocabulary: dict[str, Any] = Field(description="Digest and file versions.")
+    label_space: list[str]
+    nodes: dict[str, int] = Field(description="Rows per node table.")
+    edges: dict[str, int] = Field(description="Rows per relationship table.")
+    vectors: dict[str, int] = Field(description="Rows per embedding table.")
+    sessions: list[SessionRecord]
+    bytes: dict[str, int] = Field(description="graph, keyframes and total bytes on disk.")
+
+
+class MappingSummary(BaseModel):
+    """What a mapping session did (``map build`` and a finished live session)."""
+
+    model_config = ConfigDict(extra="allow")
+
+    session_id: str
+    frames: int
+    keyframes: int
+    objects: int
+    rooms: int
+    floors: int
+    seconds: float
+
+
+class LiveStatus(BaseModel):
+    """Counters of a running or finished live mapping session."""
+
+    model_config = ConfigDict(extra="allow")
+
+    session_id: str
+    name: str | None
+    state: str = Field(description="mapping, finishing, finished or failed.")
+    frames_received: int
+    frames_processed: int
+    keyframes: int
+    objects: int
+    error: str | None
+    summary: dict[str, Any] | None = Field(description="The mapping summary once finished.")
+    map: str | None = Field(None, description="The served map's name.")

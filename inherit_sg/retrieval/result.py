@@ -11,10 +11,13 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from inherit_sg.retrieval.scoring import Scored
 from inherit_sg.retrieval.snapshot import MapSnapshot
+
+if TYPE_CHECKING:
+    from inherit_sg.retrieval.result_models import QueryResponse
 
 
 def node_summary(snap: MapSnapshot, node_id: str) -> dict[str, Any]:
@@ -85,3 +88,9 @@ class QueryResult:
     def to_json(self, indent: int | None = None) -> str:
         """:meth:`to_dict` as JSON text."""
         return json.dumps(self.to_dict(), indent=indent)
+
+    def model(self) -> QueryResponse:
+        """:meth:`to_dict` as the typed :class:`QueryResponse`."""
+        from inherit_sg.retrieval.result_models import QueryResponse
+
+        return QueryResponse.model_validate(self.to_dict())

@@ -17,6 +17,9 @@ import pytest
 from fastapi.testclient import TestClient
 
 from api.app import create_app
+from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.facade import build_map
+from inherit_sg.model import RoomMask
 from inherit_sg.reads.bev import (
     BACKGROUND,
     OBJECT_DOT,
@@ -27,9 +30,6 @@ from inherit_sg.reads.bev import (
     rasterise,
     render_bev,
 )
-from ingest.synthetic.generate import generate_house, write_dataset
-from inherit_sg.facade import build_map
-from inherit_sg.model import RoomMask
 from tests.e2e.oracle_maps import oracle_map
 
 ORACLE, BUILT = "oracle", "built"

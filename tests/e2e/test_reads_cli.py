@@ -79,3 +79,14 @@ def test_bad_reads_give_clear_errors(map_dir: Path, tmp_path: Path) -> None:
     assert code == 2 and "tables" in out
     code, out = run("ls", "rooms", "--map", str(tmp_path / "missing"))
     assert code == 2 and "missing" in out
+
+
+def test_query_results_are_typed_and_say_the_same_as_the_json(map_dir: Path) -> None:
+    with MapService.open(map_dir) as service:
+        result = service.query("the mug on the coffee table", verify=False)
+    typed = result.model()
+    assert typed.answer is not None and typed.answer.id == "obj:m3" and typed.answer.floor == 0
+    assert typed.candidates[0].scores["c1"].kind == "label"
+    relation = typed.constraints.constraints[1]
+    assert relation.kind == "relation" and relation.model_extra["predicate"] == "on"
+    assert typed.model_dump(mode="json", exclude_unset=True) == json.loads(result.to_json())
