@@ -12,19 +12,23 @@ from __future__ import annotations
 import argparse
 import json
 import statistics
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
-from inherit_sg.perception.base import ObjectObservation
-from inherit_sg.perception.classical_segmenter import ClassicalSegmenter
-from inherit_sg.perception.colour_names import colour_name
-from inherit_sg.perception.dataset_segmenter import DatasetSegmenter, MaskNoise
-from inherit_sg.perception.describer import TemplateDescriber
-from inherit_sg.perception.descriptor import DescriptorEncoder
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the toy renderer is a test helper (tests/toy_scene.py)
+
+from inherit_sg.perception.base import ObjectObservation  # noqa: E402
+from inherit_sg.perception.classical_segmenter import ClassicalSegmenter  # noqa: E402
+from inherit_sg.perception.colour_names import colour_name  # noqa: E402
+from inherit_sg.perception.dataset_segmenter import DatasetSegmenter, MaskNoise  # noqa: E402
+from inherit_sg.perception.describer import TemplateDescriber  # noqa: E402
+from inherit_sg.perception.descriptor import DescriptorEncoder  # noqa: E402
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics  # noqa: E402
 
 
 def _scene() -> list[ToyBox]:

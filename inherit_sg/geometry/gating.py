@@ -117,7 +117,7 @@ class KeyframeQueue:
                 self.dropped += 1
                 self.dropped_hard += int(victim.hard)
             self._items.append(item)
-            self._cond.notify()
+            self._cond.notify_all()
             return dropped
 
     def get(self, timeout: float | None = None) -> PendingKeyframe | None:
@@ -125,13 +125,22 @@ class KeyframeQueue:
         with self._cond:
             if not self._cond.wait_for(lambda: self._items or self._closed, timeout):
                 return None
-            return self._items.popleft() if self._items else None
+            item = self._items.popleft() if self._items else None
+            self._cond.notify_all()  # a producer may wait for room (:meth:`wait_below`)
+            return item
+
+    def wait_below(self, size: int, timeout: float | None = None) -> bool:
+        """Block until fewer than ``size`` keyframes are pending or the queue is closed
+        (the back-pressure of recorded datasets); False when ``timeout`` passed first."""
+        with self._cond:
+            return self._cond.wait_for(lambda: len(self._items) < size or self._closed, timeout)
 
     def drain(self) -> list[PendingKeyframe]:
         """Take every pending keyframe at once (oldest first)."""
         with self._cond:
             out = list(self._items)
             self._items.clear()
+            self._cond.notify_all()
             return out
 
     def close(self) -> None:

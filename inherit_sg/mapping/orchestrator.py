@@ -51,6 +51,10 @@ from inherit_sg.store.mapdir import record_session_vocabulary
 log = logging.getLogger(__name__)
 
 
+# How often a producer waiting for room in the keyframe queue checks the worker is alive.
+WAIT_CHECK_S = 0.1
+
+
 @dataclass
 class BuildProgress:
     """Counters reported to the progress callback."""
@@ -197,8 +201,11 @@ class Mapper:
         """Geometric stream on one frame; schedules updates on trigger events."""
         queue = self.geometry.queue
         if self.backpressure == "block":
-            while len(queue) >= queue.capacity - 1 and self._worker.is_alive():
-                time.sleep(0.002)
+            # wait for the semantic worker to take a keyframe (woken by the queue itself);
+            # look up every WAIT_CHECK_S whether the worker is still there to take one
+            while not queue.wait_below(queue.capacity - 1, WAIT_CHECK_S):
+                if not self._worker.is_alive():
+                    break
         t0 = time.perf_counter()
         # the geometric stream locks itself; it never waits for the semantic side
         events = self.geometry.process(frame.validate())

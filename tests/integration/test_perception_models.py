@@ -15,7 +15,7 @@ from inherit_sg.model import Frame
 from inherit_sg.perception import create_segmenter, create_visual_encoder
 from inherit_sg.perception.base import mask_bbox
 from inherit_sg.perception.preprocess import IMAGENET_MEAN, IMAGENET_STD
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 torch = pytest.importorskip("torch")
 transformers = pytest.importorskip("transformers")

@@ -107,3 +107,24 @@ def test_queue_hands_keyframes_to_a_consumer_thread() -> None:
         q.put(_pending(9))
     with pytest.raises(ValueError):
         KeyframeQueue(0)
+
+
+def test_a_producer_waits_for_room_until_the_consumer_takes_a_keyframe() -> None:
+    q = KeyframeQueue(2)
+    q.put(_pending(0))
+    q.put(_pending(1))
+    assert q.wait_below(2, timeout=0.01) is False  # full: no room
+    taken: list[str] = []
+
+    def consume_one() -> None:
+        item = q.get(timeout=5.0)
+        assert item is not None
+        taken.append(item.keyframe.id)
+
+    worker = threading.Timer(0.05, consume_one)
+    worker.start()
+    assert q.wait_below(2, timeout=5.0) is True  # woken by the consumer's get
+    worker.join()
+    assert taken == ["kf:0"] and len(q) == 1
+    q.close()
+    assert q.wait_below(0, timeout=0.01) is True  # a closed queue never blocks

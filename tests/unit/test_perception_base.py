@@ -22,7 +22,7 @@ from inherit_sg.perception.preprocess import (
     square_box,
     to_batch,
 )
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 
 def test_mask_bbox_is_inclusive_and_none_for_empty() -> None:

@@ -15,7 +15,7 @@ from inherit_sg.perception.classical_segmenter import (
     depth_edges,
 )
 from inherit_sg.perception.planes import backproject, structural_planes
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 BOXES = [
     ToyBox("chair", (-1.0, 2.0, 0.45), (0.5, 0.5, 0.9), (190, 40, 40), yaw=0.3, pattern=0.1),

@@ -7,7 +7,7 @@ import pytest
 
 from inherit_sg.model import Frame, Intrinsics, Pose
 from inherit_sg.perception.dataset_segmenter import DatasetSegmenter, MaskNoise
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 
 def _frame(instances: np.ndarray, labels: dict[int, str]) -> Frame:

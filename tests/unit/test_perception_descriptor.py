@@ -8,7 +8,7 @@ import pytest
 from inherit_sg.errors import InputError
 from inherit_sg.model import Frame
 from inherit_sg.perception.descriptor import NATIVE_DIM, DescriptorEncoder
-from inherit_sg.perception.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
+from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 BOXES = [
     ToyBox("chair", (-0.8, 2.0, 0.45), (0.5, 0.5, 0.9), (190, 40, 40), yaw=0.3, pattern=0.15),
