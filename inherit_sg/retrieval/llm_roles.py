@@ -5,8 +5,9 @@ their answers into the constraint model.
 2. *negation extractor*: which constraint ids the request negates;
 3. *weight assigner*: an importance weight in [0, 1] per constraint id.
 
-Answers are checked field by field; anything off raises :class:`InputError` naming the
-role and the field, which makes the parser fall back to the rule grammar.
+Answers are validated by the pydantic models of :mod:`.llm_answers` (which also give the
+JSON schemas sent); anything off raises :class:`InputError` naming the role and the field,
+which makes the parser fall back to the rule grammar.
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ from inherit_sg.retrieval.constraints import (
     LAYERS,
     MEASURES,
     PREDICATES,
-    REFERENCES,
     RELATIVE_FLOORS,
     AreaConstraint,
     AttributeConstraint,
@@ -36,51 +36,22 @@ from inherit_sg.retrieval.constraints import (
     Target,
 )
 from inherit_sg.retrieval.labels import request_labels
+from inherit_sg.retrieval.llm_answers import (
+    ConstraintAnswer,
+    Decomposition,
+    LandmarkAnswer,
+    Negations,
+    Weights,
+    strict_schema,
+    validated,
+)
 from inherit_sg.retrieval.query import ParsedQuery, describe, map_constraints, number_constraints
 from inherit_sg.vocab.functions import kinds_serving
 from inherit_sg.vocab.rooms import room_type
 
-_STRS = {"type": "array", "items": {"type": "string"}}
-_NSTR = {"type": ["string", "null"]}
-_KINDS = ["attribute", "relation", "room", "area", "floor", "superlative", "function", "label"]
-
-
-def _enum(values: tuple[str, ...] | list[str], nullable: bool = False) -> dict[str, Any]:
-    if nullable:
-        return {"type": ["string", "null"], "enum": [*values, None]}
-    return {"type": "string", "enum": list(values)}
-
-
-def _strict(props: dict[str, Any]) -> dict[str, Any]:
-    return {"type": "object", "additionalProperties": False, "required": list(props),
-            "properties": props}  # fmt: skip
-
-
-_LANDMARK_REF = {"anyOf": [{"$ref": "#/$defs/landmark"}, {"type": "null"}]}
-CONSTRAINT_SCHEMA = _strict({
-    "kind": _enum(_KINDS), "text": {"type": "string"}, "key": _enum(ATTRIBUTE_KEYS, True),
-    "value": _NSTR, "predicate": _enum(PREDICATES, True), "landmark": _LANDMARK_REF,
-    "landmark2": _LANDMARK_REF, "level": {"type": ["integer", "null"]},
-    "relative": _enum(RELATIVE_FLOORS, True), "measure": _enum(MEASURES, True),
-    "ordinal": {"type": ["integer", "null"]}, "direction": _enum(("left", "right"), True),
-})  # fmt: skip
-LANDMARK_SCHEMA = _strict(
-    {"labels": _STRS, "constraints": {"type": "array", "items": {"$ref": "#/$defs/constraint"}}}
-)
-DECOMPOSE_SCHEMA: dict[str, Any] = {
-    **_strict({
-        "target": _strict({"layer": _enum(LAYERS), "labels": _STRS, "function": _NSTR,
-                           "plural": {"type": "boolean"}}),
-        "constraints": {"type": "array", "items": {"$ref": "#/$defs/constraint"}},
-        "reference": _enum(REFERENCES), "no_target_reason": _NSTR,
-    }),
-    "$defs": {"constraint": CONSTRAINT_SCHEMA, "landmark": LANDMARK_SCHEMA},
-}  # fmt: skip
-NEGATION_SCHEMA = _strict({"negated": _STRS})
-WEIGHT_SCHEMA = _strict(
-    {"weights": {"type": "array", "items": _strict({"id": {"type": "string"},
-                                                   "weight": {"type": "number"}})}}
-)  # fmt: skip
+DECOMPOSE_SCHEMA = strict_schema(Decomposition)
+NEGATION_SCHEMA = strict_schema(Negations)
+WEIGHT_SCHEMA = strict_schema(Weights)
 
 DECOMPOSER_PROMPT = f"""You are the decomposer of a robot's request parser (role 1 of 3).
 Turn an indoor navigation request into JSON matching the schema. Do not judge negation or
@@ -131,18 +102,7 @@ def listing(query: ParsedQuery) -> dict[str, Any]:
     }
 
 
-def _need(ok: bool, where: str, message: str) -> None:
-    if not ok:
-        raise InputError(f"llm decomposer: {where}: {message}")
-
-
-def _function_labels(function: str) -> tuple[str, ...]:
-    return kinds_serving(function)
-
-
-def _labels(raw: Any, where: str) -> tuple[str, ...]:
-    _need(isinstance(raw, list) and all(isinstance(x, str) for x in raw), where,
-          "labels must be a list of strings")  # fmt: skip
+def _labels(raw: list[str]) -> tuple[str, ...]:
     out: list[str] = []
     for label in raw:
         for canon in request_labels(label):
@@ -151,98 +111,89 @@ def _labels(raw: Any, where: str) -> tuple[str, ...]:
     return tuple(out)
 
 
-def _landmark(raw: Any, where: str) -> Landmark:
-    _need(isinstance(raw, dict), where, "landmark must be an object")
-    labels = _labels(raw.get("labels", []), f"{where}.labels")
-    nested = raw.get("constraints", [])
-    _need(isinstance(nested, list), where, "landmark constraints must be a list")
+def _landmark(raw: LandmarkAnswer) -> Landmark:
+    labels = _labels(raw.labels)
     return Landmark(
         target=Target(labels=labels, noun=" / ".join(labels), any=not labels),
-        constraints=tuple(
-            _constraint(c, f"{where}.constraints[{i}]") for i, c in enumerate(nested)
-        ),
+        constraints=tuple(_constraint(c) for c in raw.constraints),
     )
 
 
-def _constraint(raw: Any, where: str) -> Constraint:
-    _need(isinstance(raw, dict), where, "constraint must be an object")
-    kind, text, value = raw.get("kind"), str(raw.get("text") or ""), raw.get("value")
-    try:
-        if kind == "attribute":
-            _need(isinstance(value, str) and bool(value), where, "attribute needs a value")
-            key = raw.get("key") if raw.get("key") in ATTRIBUTE_KEYS else "other"
-            return AttributeConstraint(key=key, value=value.lower(), text=text, weight=0.6)
-        if kind == "relation":
-            predicate = str(raw.get("predicate") or "").replace(" ", "_")
-            second = raw.get("landmark2")
-            return RelationConstraint(
-                predicate=predicate, landmark=_landmark(raw.get("landmark"), f"{where}.landmark"),
-                landmark2=_landmark(second, f"{where}.landmark2") if second else None,
-                text=text, weight=0.8,
-            )  # fmt: skip
-        if kind == "room":
-            _need(isinstance(value, str) and bool(value), where, "room needs a value")
-            return RoomConstraint(type=room_type(value), name=value.lower(), text=text, weight=0.7)
-        if kind == "area":
-            _need(isinstance(value, str) and bool(value), where, "area needs a value")
-            return AreaConstraint(label=value.lower(), text=text, weight=0.6)
-        if kind == "floor":
-            return FloorConstraint(level=raw.get("level"), relative=raw.get("relative"), text=text)
-        if kind == "superlative":
-            lm = raw.get("landmark")
-            return Superlative(
-                measure=str(raw.get("measure")), ordinal=raw.get("ordinal"),
-                direction=raw.get("direction"), text=text, weight=0.8,
-                landmark=_landmark(lm, f"{where}.landmark") if lm else None,
-            )  # fmt: skip
-        if kind == "function":
-            _need(isinstance(value, str) and bool(value), where, "function needs a value")
-            return FunctionConstraint(function=value, labels=_function_labels(value), text=text,
-                                      weight=0.9)  # fmt: skip
-        if kind == "label":
-            labels = _labels([value] if isinstance(value, str) else [], where)
-            _need(bool(labels), where, "label needs a value")
-            return LabelConstraint(labels=labels, noun=str(value), text=text)
-    except InputError as exc:
-        if exc.message.startswith("llm decomposer"):
-            raise
-        raise InputError(f"llm decomposer: {where}: {exc.message}") from None
-    raise InputError(f"llm decomposer: {where}: unknown constraint kind {kind!r}")
+def _value(raw: ConstraintAnswer) -> str:
+    if not raw.value:
+        raise InputError(f"{raw.kind} needs a value")
+    return raw.value
+
+
+def _constraint(raw: ConstraintAnswer) -> Constraint:
+    """One validated constraint answer in the constraint model."""
+    text = raw.text or ""
+    if raw.kind == "attribute":
+        return AttributeConstraint(key=raw.key or "other", value=_value(raw).lower(), text=text,
+                                   weight=0.6)  # fmt: skip
+    if raw.kind == "relation":
+        if raw.landmark is None:
+            raise InputError("relation needs a landmark")
+        return RelationConstraint(
+            predicate=str(raw.predicate or ""), landmark=_landmark(raw.landmark),
+            landmark2=_landmark(raw.landmark2) if raw.landmark2 else None, text=text, weight=0.8,
+        )  # fmt: skip
+    if raw.kind == "room":
+        value = _value(raw)
+        return RoomConstraint(type=room_type(value), name=value.lower(), text=text, weight=0.7)
+    if raw.kind == "area":
+        return AreaConstraint(label=_value(raw).lower(), text=text, weight=0.6)
+    if raw.kind == "floor":
+        return FloorConstraint(level=raw.level, relative=raw.relative, text=text)
+    if raw.kind == "superlative":
+        return Superlative(
+            measure=str(raw.measure), ordinal=raw.ordinal, direction=raw.direction, text=text,
+            weight=0.8, landmark=_landmark(raw.landmark) if raw.landmark else None,
+        )  # fmt: skip
+    if raw.kind == "function":
+        value = _value(raw)
+        return FunctionConstraint(function=value, labels=kinds_serving(value), text=text,
+                                  weight=0.9)  # fmt: skip
+    labels = _labels([raw.value] if raw.value else [])
+    if not labels:
+        raise InputError("label needs a value")
+    return LabelConstraint(labels=labels, noun=str(raw.value), text=text)
+
+
+def _constraints(raw: list[ConstraintAnswer]) -> list[Constraint]:
+    """The constraints of the decomposition, the failing one named by its index."""
+    out = []
+    for i, item in enumerate(raw):
+        try:
+            out.append(_constraint(item))
+        except InputError as exc:
+            raise InputError(f"llm decomposer: constraints[{i}]: {exc.message}") from None
+    return out
 
 
 def decomposition_to_query(text: str, data: dict[str, Any]) -> ParsedQuery:
     """Validate the decomposer's answer into a numbered :class:`ParsedQuery`."""
-    raw_target = data.get("target")
-    _need(isinstance(raw_target, dict), "target", "missing or not an object")
-    assert isinstance(raw_target, dict)
-    layer = raw_target.get("layer", "object")
-    _need(layer in LAYERS, "target.layer", f"{layer!r} is not one of {LAYERS}")
-    labels = _labels(raw_target.get("labels", []), "target.labels")
-    function = raw_target.get("function")
-    _need(function is None or isinstance(function, str), "target.function", "must be a string")
-    raw = data.get("constraints", [])
-    _need(isinstance(raw, list), "constraints", "must be a list")
-    found = [_constraint(c, f"constraints[{i}]") for i, c in enumerate(raw)]
+    answer: Decomposition = validated(Decomposition, data, "decomposer")
+    labels = _labels(answer.target.labels)
+    function = answer.target.function
+    found = _constraints(answer.constraints)
     head: list[Constraint] = []
     if labels and not any(c.kind == "label" and not c.negated for c in found):
         head.append(LabelConstraint(labels=labels, noun=" / ".join(labels), text="target"))
     if function and not any(c.kind == "function" for c in found):
-        head.append(FunctionConstraint(function=function, labels=_function_labels(function),
+        head.append(FunctionConstraint(function=function, labels=kinds_serving(function),
                                        weight=0.9, text="target"))  # fmt: skip
-    reference = data.get("reference", "none")
-    _need(reference in REFERENCES, "reference", f"{reference!r} is not one of {REFERENCES}")
-    reason = data.get("no_target_reason")
+    reason = answer.no_target_reason
     attributes = tuple(c.value for c in found if isinstance(c, AttributeConstraint))
     target = Target(
-        layer=layer, labels=labels, noun=" / ".join(labels), function=function,
-        attributes=attributes, plural=bool(raw_target.get("plural", False)),
-        any=not labels and bool(function),
+        layer=answer.target.layer, labels=labels, noun=" / ".join(labels), function=function,
+        attributes=attributes, plural=answer.target.plural, any=not labels and bool(function),
     )  # fmt: skip
     return ParsedQuery(
         text=text,
         target=target,
         constraints=number_constraints((*head, *found)),
-        reference=reference,
+        reference=answer.reference,
         no_target_reason=str(reason) if reason and not labels and not function else None,
         parser="llm",
     )
@@ -250,9 +201,7 @@ def decomposition_to_query(text: str, data: dict[str, Any]) -> ParsedQuery:
 
 def apply_negations(query: ParsedQuery, data: dict[str, Any]) -> ParsedQuery:
     """Flag the constraint ids the negation extractor returned."""
-    ids = data.get("negated")
-    if not isinstance(ids, list) or not all(isinstance(x, str) for x in ids):
-        raise InputError("llm negation extractor: 'negated' must be a list of ids")
+    ids = validated(Negations, data, "negation extractor").negated
     known = {c.id for c, _ in query.walk()}
     unknown = sorted(set(ids) - known)
     if unknown:
@@ -268,19 +217,13 @@ def apply_negations(query: ParsedQuery, data: dict[str, Any]) -> ParsedQuery:
 
 def apply_weights(query: ParsedQuery, data: dict[str, Any]) -> ParsedQuery:
     """Set the weights the weight assigner returned (others keep their defaults)."""
-    items = data.get("weights")
-    if not isinstance(items, list):
-        raise InputError("llm weight assigner: 'weights' must be a list")
+    answer: Weights = validated(Weights, data, "weight assigner")
     known = {c.id for c, _ in query.walk()}
     weights: dict[str, float] = {}
-    for item in items:
-        cid = item.get("id") if isinstance(item, dict) else None
-        weight = item.get("weight") if isinstance(item, dict) else None
-        if cid not in known:
-            raise InputError(f"llm weight assigner: unknown constraint id {cid!r}")
-        if not isinstance(weight, int | float) or not 0.0 <= weight <= 1.0:
-            raise InputError(f"llm weight assigner: weight of {cid} must be in [0, 1]")
-        weights[str(cid)] = float(weight)
+    for item in answer.weights:
+        if item.id not in known:
+            raise InputError(f"llm weight assigner: unknown constraint id {item.id!r}")
+        weights[item.id] = item.weight
     constraints = map_constraints(
         query.constraints, lambda c: replace(c, weight=weights.get(c.id, c.weight))
     )
