@@ -1,23 +1,21 @@
 """Minimal client for OpenAI-compatible chat completions (GPT-4o, vLLM, Ollama, …).
 
-``POST {endpoint}/chat/completions`` with the standard library only. Structured output
-uses ``response_format = {"type": "json_schema", …}``. Timeouts, connection failures,
-HTTP 429 and 5xx are retried with exponential backoff; other HTTP errors and malformed
-answers fail at once. Every failure raises :class:`EndpointError` naming the endpoint
+``POST {endpoint}/chat/completions`` over httpx (one pooled connection per client), with
+tenacity's exponential backoff. Structured output uses ``response_format = {"type":
+"json_schema", …}``. Timeouts, connection failures, HTTP 429 and 5xx are retried; other
+HTTP errors and malformed answers fail at once. Every failure raises :class:`EndpointError` naming the endpoint
 and what went wrong. Successful answers are cached in memory, keyed by model, messages
 and schema, so a repeated request costs no round trip.
 """
 
 from __future__ import annotations
 
-import http.client
 import json
 import re
-import socket
-import time
-import urllib.error
-import urllib.request
 from typing import Any
+
+import httpx
+from tenacity import Retrying, retry_if_exception_type, stop_after_attempt, wait_exponential
 
 from inherit_sg.config import LLMConfig
 from inherit_sg.errors import EndpointError
@@ -55,6 +53,14 @@ class ChatClient:
         self.backoff_s = backoff_s
         self.cache = ResponseCache(cache_size)
         self.requests_sent = 0
+        headers = {"Content-Type": "application/json", "Accept": "application/json"}
+        if api_key:
+            headers["Authorization"] = f"Bearer {api_key}"
+        self._http = httpx.Client(headers=headers, timeout=timeout_s)
+
+    def close(self) -> None:
+        """Close the pooled connection."""
+        self._http.close()
 
     @classmethod
     def from_config(cls, config: LLMConfig, **kwargs: Any) -> ChatClient:
@@ -104,41 +110,34 @@ class ChatClient:
 
     def _post(self, body: dict[str, Any]) -> dict[str, Any]:
         attempts = self.retries + 1
-        last = ""
-        for attempt in range(attempts):
-            if attempt:
-                time.sleep(self.backoff_s * 2 ** (attempt - 1))
-            try:
-                return self._once(body)
-            except _Retryable as exc:
-                last = str(exc)
-        raise EndpointError(f"{last} (gave up after {attempts} attempts)")
+        retrying = Retrying(
+            stop=stop_after_attempt(attempts),
+            wait=wait_exponential(multiplier=self.backoff_s, min=0.0),
+            retry=retry_if_exception_type(_Retryable),
+            reraise=True,
+        )
+        try:
+            return retrying(self._once, body)
+        except _Retryable as exc:
+            raise EndpointError(f"{exc} (gave up after {attempts} attempts)") from None
 
     def _once(self, body: dict[str, Any]) -> dict[str, Any]:
-        headers = {"Content-Type": "application/json", "Accept": "application/json"}
-        if self.api_key:
-            headers["Authorization"] = f"Bearer {self.api_key}"
-        request = urllib.request.Request(
-            self.url, data=json.dumps(body).encode("utf-8"), headers=headers, method="POST"
-        )
         self.requests_sent += 1
         try:
-            with urllib.request.urlopen(request, timeout=self.timeout_s) as response:
-                raw = response.read()
-        except urllib.error.HTTPError as exc:
-            detail = exc.read()[:200].decode("utf-8", "replace")
-            message = f"{self.url} answered HTTP {exc.code}: {detail}"
-            if exc.code == 429 or exc.code >= 500:
-                raise _Retryable(message) from None
-            raise EndpointError(message) from None
-        except TimeoutError:
+            response = self._http.post(self.url, json=body)
+        except httpx.TimeoutException:
             raise _Retryable(f"{self.url} did not answer within {self.timeout_s:g} s") from None
-        except urllib.error.URLError as exc:
-            if isinstance(exc.reason, TimeoutError | socket.timeout):
-                raise _Retryable(f"{self.url} did not answer within {self.timeout_s:g} s") from None
-            raise _Retryable(f"cannot reach {self.url}: {exc.reason}") from None
-        except (OSError, http.client.HTTPException) as exc:
+        except httpx.ConnectError as exc:
+            raise _Retryable(f"cannot reach {self.url}: {exc}") from None
+        except httpx.HTTPError as exc:
             raise _Retryable(f"connection to {self.url} failed: {exc!r}") from None
+        if response.status_code >= 400:
+            detail = response.content[:200].decode("utf-8", "replace")
+            message = f"{self.url} answered HTTP {response.status_code}: {detail}"
+            if response.status_code == 429 or response.status_code >= 500:
+                raise _Retryable(message)
+            raise EndpointError(message)
+        raw = response.content
         try:
             data = json.loads(raw)
         except (json.JSONDecodeError, UnicodeDecodeError):
