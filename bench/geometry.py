@@ -26,11 +26,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from ingest.isg import IsgReader
-from ingest.synthetic.generate import generate_house, write_dataset
-from ingest.synthetic.scene import Scene
 from inherit_sg.eval.geometry import combine, evaluate_stream
 from inherit_sg.geometry import GeometricStream
+from inherit_sg.ingest.isg import IsgReader
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import Frame
 
 RESULTS = Path(__file__).resolve().parent / "results" / "geometry.json"
@@ -125,7 +125,7 @@ def mp3d(cache: Path, width: int, height: int) -> dict[str, Any] | None:
     """The real MP3D layout rendered as a walk (open-plan regions), if available."""
     if not MP3D_HOUSE.is_file():
         return None
-    from ingest.mp3d_dataset import load_house_world, write_house_dataset
+    from inherit_sg.ingest.mp3d_dataset import load_house_world, write_house_dataset
 
     out = cache / f"mp3d_{width}x{height}"
     if not (out / "scene.json").is_file():

@@ -18,11 +18,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from ingest.synthetic.generate import generate_house, write_dataset
-from ingest.synthetic.ground_truth_files import seen_objects
-from ingest.synthetic.scene import Scene
 from inherit_sg.eval.mapping import evaluate_objects, room_correspondence
 from inherit_sg.facade import build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import EdgeKind, FloorNode, RoomNode
 from inherit_sg.store import MapStore
 

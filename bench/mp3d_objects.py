@@ -26,10 +26,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ingest.synthetic.ground_truth_files import seen_objects
-from ingest.synthetic.scene import Scene
 from inherit_sg.eval.mapping import labels_compatible, match_objects
 from inherit_sg.eval.retrieval import _box_distance
+from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import ObjectNode
 from inherit_sg.store import MapStore
 

@@ -35,8 +35,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ingest.synthetic.scene import ObjectGT, Scene
 from inherit_sg.eval.retrieval import GroundTruth, _box_distance, percentile
+from inherit_sg.ingest.synthetic.scene import ObjectGT, Scene
 
 ROOT = Path(__file__).resolve().parents[1]
 HOUSE = ROOT / ".." / "shared" / "data" / "real" / "mp3d" / "example_mp3d_scene.house"
@@ -132,7 +132,7 @@ def ensure_dataset(work: Path, house: Path) -> Path:
         return dataset
     if not house.is_file():
         raise SystemExit(f"house file not found: {house}")
-    from ingest.mp3d_dataset import load_house_world, write_house_dataset
+    from inherit_sg.ingest.mp3d_dataset import load_house_world, write_house_dataset
 
     partial = work / "dataset.partial"
     shutil.rmtree(partial, ignore_errors=True)

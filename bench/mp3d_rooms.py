@@ -41,8 +41,8 @@ from typing import Any
 
 import numpy as np
 
-from ingest.synthetic.scene import Scene
 from inherit_sg.eval.mapping import RoomMatching, match_rooms
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import FloorNode, RoomNode
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -61,7 +61,7 @@ def ensure_dataset(work: Path, house: Path) -> Path:
         return dataset
     if not house.is_file():
         raise SystemExit(f"house file not found: {house}")
-    from ingest.mp3d_dataset import load_house_world, write_house_dataset
+    from inherit_sg.ingest.mp3d_dataset import load_house_world, write_house_dataset
 
     partial = work / "dataset.partial"
     shutil.rmtree(partial, ignore_errors=True)

@@ -18,8 +18,13 @@ import tempfile
 import time
 from pathlib import Path
 
-from ingest.synthetic.generate import House, generate_house, make_intrinsics, write_dataset
-from ingest.synthetic.render import Renderer
+from inherit_sg.ingest.synthetic.generate import (
+    House,
+    generate_house,
+    make_intrinsics,
+    write_dataset,
+)
+from inherit_sg.ingest.synthetic.render import Renderer
 from inherit_sg.model import Pose
 
 RESULTS = Path(__file__).resolve().parent / "results" / "render.json"

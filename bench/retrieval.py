@@ -29,13 +29,13 @@ from typing import Any
 
 import numpy as np
 
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.queries import QueryGT, generate_queries
-from ingest.synthetic.scene import Scene
 from inherit_sg.config import Config
 from inherit_sg.embed import get_text_embedder
 from inherit_sg.eval.retrieval import Answer, evaluate, latency, summarise
 from inherit_sg.exchange.scene_truth import scene_to_graph
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.queries import QueryGT, generate_queries
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.mapping.node_text import embed_nodes
 from inherit_sg.model import BBox3D, Edge, Node, ObjectNode, RoomMask, SceneGraph
 from inherit_sg.retrieval.baseline import FlatBaseline

@@ -24,8 +24,8 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-from ingest.synthetic.queries import QueryGT, generate_queries
-from ingest.synthetic.scene import ObjectGT, Scene
+from inherit_sg.ingest.synthetic.queries import QueryGT, generate_queries
+from inherit_sg.ingest.synthetic.scene import ObjectGT, Scene
 from inherit_sg.model import ObjectNode
 from inherit_sg.retrieval.constraints import FunctionConstraint, LabelConstraint
 from inherit_sg.retrieval.engine import QueryEngine

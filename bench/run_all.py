@@ -98,13 +98,13 @@ def make_dataset(spec: DatasetSpec, out: Path) -> bool:
     if spec.kind == "mp3d":
         if not MP3D_HOUSE.is_file():
             return False
-        from ingest.mp3d_dataset import load_house_world, write_house_dataset
+        from inherit_sg.ingest.mp3d_dataset import load_house_world, write_house_dataset
 
         write_house_dataset(
             load_house_world(MP3D_HOUSE), out, seed=spec.seed, width=WIDTH, height=HEIGHT
         )
         return True
-    from ingest.synthetic.generate import generate_house, write_dataset
+    from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 
     house = generate_house(spec.seed, 2, style=spec.style, open_plan=spec.open_plan)
     write_dataset(house, out, noise=spec.noise, width=WIDTH, height=HEIGHT, seed=spec.seed)

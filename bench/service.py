@@ -33,9 +33,9 @@ from typing import Any
 import httpx
 import numpy as np
 
-from ingest.synthetic.generate import generate_house, write_dataset
-from ingest.synthetic.queries import generate_queries
 from inherit_sg.facade import import_into_new_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.queries import generate_queries
 
 ROOT = Path(__file__).resolve().parents[1]
 NAME = "house"

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.vocabulary import OBJECT_KINDS
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.vocabulary import OBJECT_KINDS
 
 
 def _seeds(text: str) -> list[int]:

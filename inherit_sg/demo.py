@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ingest.synthetic.queries import QueryGT, read_queries
 from inherit_sg.errors import InputError
+from inherit_sg.ingest.synthetic.queries import QueryGT, read_queries
 
 # (category, sub-category preference) for the showcase, in the order they are shown
 SHOWCASE = (
@@ -70,8 +70,8 @@ def _near(answer: dict[str, Any] | None, targets: list[list[float]]) -> bool:
 
 def run_showcase(map_dir: Path, dataset: Path) -> list[ShowcaseAnswer]:
     """Answer the showcase requests and a conversation follow-up on a built map."""
-    from ingest.synthetic.query_conversations import read_conversations
     from inherit_sg.facade import MapService
+    from inherit_sg.ingest.synthetic.query_conversations import read_conversations
     from inherit_sg.retrieval.conversation import Conversation
 
     conversation = Conversation()
@@ -107,7 +107,7 @@ def generate(
     out: Path, seed: int, width: int, height: int, progress: Callable[[int, int], None]
 ) -> dict[str, Any]:
     """Write the demo house dataset into ``out/house``."""
-    from ingest.synthetic.generate import generate_house, write_dataset
+    from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 
     house = generate_house(seed, 2)
     return write_dataset(

@@ -343,9 +343,9 @@ def import_into_new_map(
             store.write_changes(graph)
         return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
     if fmt == "scene":
-        from ingest.synthetic.scene import Scene
         from inherit_sg.embed import get_text_embedder
         from inherit_sg.exchange.scene_truth import scene_to_graph
+        from inherit_sg.ingest.synthetic.scene import Scene
         from inherit_sg.mapping.node_text import embed_nodes
 
         graph = scene_to_graph(Scene.load(src))
@@ -403,7 +403,7 @@ def build_map(
     """
     import itertools
 
-    from ingest.readers import open_dataset
+    from inherit_sg.ingest.readers import open_dataset
     from inherit_sg.mapping.bev_pictures import write_bev_pictures
     from inherit_sg.mapping.orchestrator import Mapper
     from inherit_sg.mapping.sessions import new_session

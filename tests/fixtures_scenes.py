@@ -10,8 +10,16 @@ from __future__ import annotations
 import random
 from dataclasses import dataclass, field
 
-from ingest.synthetic.scene import AreaGT, DoorGT, FloorGT, ObjectGT, RoomGT, Scene, StairsGT
-from ingest.synthetic.vocabulary import AREA_TEMPLATES, OBJECT_KINDS
+from inherit_sg.ingest.synthetic.scene import (
+    AreaGT,
+    DoorGT,
+    FloorGT,
+    ObjectGT,
+    RoomGT,
+    Scene,
+    StairsGT,
+)
+from inherit_sg.ingest.synthetic.vocabulary import AREA_TEMPLATES, OBJECT_KINDS
 
 FLOOR_HEIGHT = 3.0
 

@@ -8,12 +8,12 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ingest.synthetic.queries import QueryGT
-from ingest.synthetic.scene import Scene
 from inherit_sg.benchmark.accuracy import engine_answers, judge, warm_up
 from inherit_sg.benchmark.latency import mean_total_ms
 from inherit_sg.config import Config
 from inherit_sg.eval.retrieval import summarise
+from inherit_sg.ingest.synthetic.queries import QueryGT
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.retrieval.engine import QueryEngine
 from inherit_sg.store import MapStore
 

@@ -7,9 +7,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from ingest.synthetic.queries import QueryGT
-from ingest.synthetic.scene import Scene
 from inherit_sg.eval.retrieval import Answer, Outcome, evaluate, summarise
+from inherit_sg.ingest.synthetic.queries import QueryGT
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.retrieval.baseline import FlatBaseline
 from inherit_sg.retrieval.engine import QueryEngine
 from inherit_sg.retrieval.result import QueryResult

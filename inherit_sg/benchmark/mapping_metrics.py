@@ -9,8 +9,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ingest.synthetic.ground_truth_files import seen_objects
-from ingest.synthetic.scene import Scene
 from inherit_sg.config import Config
 from inherit_sg.eval.mapping import (
     RoomMatching,
@@ -18,6 +16,8 @@ from inherit_sg.eval.mapping import (
     match_rooms,
     room_correspondence,
 )
+from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import EdgeKind, FloorNode, RoomNode, Session
 from inherit_sg.store import MapStore
 

@@ -6,9 +6,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ingest.synthetic.queries import QueryGT, generate_queries, read_queries
-from ingest.synthetic.scene import Scene
 from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.synthetic.queries import QueryGT, generate_queries, read_queries
+from inherit_sg.ingest.synthetic.scene import Scene
 
 QUERIES_FILE = "queries.jsonl"
 

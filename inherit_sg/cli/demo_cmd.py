@@ -98,7 +98,7 @@ def demo(
     if serve:
         import uvicorn
 
-        from api.app import create_app
+        from inherit_sg.api.app import create_app
 
         console.print(f"serving {out / 'map'} at http://127.0.0.1:{port}/ (Ctrl-C stops)")
         uvicorn.run(create_app(out / "map"), host="127.0.0.1", port=port, log_level="warning")

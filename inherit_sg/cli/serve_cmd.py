@@ -76,7 +76,7 @@ def serve(
     other machines can reach, API keys are required unless --insecure is given."""
     import uvicorn
 
-    from api.app import create_app
+    from inherit_sg.api.app import create_app
     from inherit_sg.config import load_config
 
     cfg = load_config(config_file, overrides or [])

@@ -20,7 +20,7 @@ from inherit_sg.cli.output import handle_errors, print_json, print_table
 from inherit_sg.errors import InputError
 
 if TYPE_CHECKING:
-    from ingest.synthetic.generate import DatasetSummary
+    from inherit_sg.ingest.synthetic.generate import DatasetSummary
     from inherit_sg.model import Intrinsics
 
 Progress = Callable[[int, int], None]
@@ -140,7 +140,7 @@ def generate(
 
     Default houses: Matterport3D room types and objects in real proportions, open-plan floors.
     """
-    from ingest.synthetic.generate import generate_house, write_dataset
+    from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 
     _prepare_out(out, force)
     house = generate_house(seed, floors, rooms_per_floor, style=style.value, open_plan=open_plan)
@@ -183,7 +183,7 @@ def render_house(
 
     Regions become rooms, object boxes objects; coordinates stay the file's own (z-up metres).
     """
-    from ingest.mp3d_dataset import load_house_world, write_house_dataset
+    from inherit_sg.ingest.mp3d_dataset import load_house_world, write_house_dataset
 
     if not house_file.is_file():
         raise InputError(f"house file not found: {house_file}")
@@ -247,8 +247,8 @@ def render_mesh(
     with the classical segmenter. Example (Replica office0):
     `inherit-sg sim render-mesh office0_mesh.ply -t traj.txt -c cam_params.json -o office0`.
     """
-    from ingest.mesh_render import MeshRenderer, write_mesh_dataset
-    from ingest.readers.replica import read_trajectory
+    from inherit_sg.ingest.mesh_render import MeshRenderer, write_mesh_dataset
+    from inherit_sg.ingest.readers.replica import read_trajectory
 
     intrinsics = _read_camera(camera).scaled(scale)
     poses = read_trajectory(trajectory)
@@ -281,8 +281,8 @@ def _read_camera(path: Path) -> Intrinsics:
     """Intrinsics from a NICE-SLAM ``cam_params.json`` or an isg ``intrinsics.json``."""
     import json
 
-    from ingest.readers.replica import read_cam_params
     from inherit_sg.errors import DatasetError, FrameError
+    from inherit_sg.ingest.readers.replica import read_cam_params
     from inherit_sg.model import Intrinsics
 
     try:

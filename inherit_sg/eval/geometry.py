@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ingest.synthetic.scene import FloorGT, RoomGT, Scene
+from inherit_sg.ingest.synthetic.scene import FloorGT, RoomGT, Scene
 from inherit_sg.model import RoomMask
 
 if TYPE_CHECKING:

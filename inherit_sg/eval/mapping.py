@@ -24,9 +24,9 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ingest.synthetic.scene import ObjectGT, Scene
-from ingest.synthetic.truth_predicates import above, near, next_to, on
-from ingest.synthetic.vocabulary import OBJECT_KINDS
+from inherit_sg.ingest.synthetic.scene import ObjectGT, Scene
+from inherit_sg.ingest.synthetic.truth_predicates import above, near, next_to, on
+from inherit_sg.ingest.synthetic.vocabulary import OBJECT_KINDS
 from inherit_sg.model import Edge, ObjectNode, RoomMask, RoomNode
 
 _SYNONYMS: dict[str, set[str]] = {}

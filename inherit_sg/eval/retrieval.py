@@ -19,8 +19,8 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ingest.synthetic.queries import QueryGT
-from ingest.synthetic.scene import ObjectGT, Scene
+from inherit_sg.ingest.synthetic.queries import QueryGT
+from inherit_sg.ingest.synthetic.scene import ObjectGT, Scene
 
 GROUPS: dict[str, tuple[str, ...]] = {"A-C": ("A", "B", "C"), "D": ("D",), "E": ("E",), "F": ("F",)}
 Answer = tuple[str | None, Sequence[float] | None, dict[str, float]]

@@ -13,7 +13,7 @@ from collections import defaultdict
 
 import numpy as np
 
-from ingest.synthetic.scene import Scene
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.mapping.relations import infer_relations
 from inherit_sg.mapping.room_semantics import summarise_room
 from inherit_sg.model import (

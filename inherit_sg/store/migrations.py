@@ -17,7 +17,7 @@ from pathlib import Path
 
 import kuzu
 
-import schema
+from inherit_sg import schema
 from inherit_sg.errors import MapCorruptError, SchemaVersionError
 from inherit_sg.store.cypher_lex import TokenKind, split_statements, tokenize
 from inherit_sg.store.kuzu_util import index_names, rows, run, table_names

@@ -6,8 +6,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ingest.synthetic.generate import generate_house
 from inherit_sg.facade import import_into_new_map
+from inherit_sg.ingest.synthetic.generate import generate_house
 
 
 def oracle_map(root: Path, name: str, seed: int, *, floors: int = 1, rooms: int = 4) -> Path:

@@ -12,7 +12,7 @@ import typer
 from fastapi.testclient import TestClient
 from typer.testing import CliRunner
 
-from api.app import create_app
+from inherit_sg.api.app import create_app
 from inherit_sg.cli.serve_cmd import serve
 from inherit_sg.errors import MapNotFoundError
 from tests.e2e.oracle_maps import oracle_map

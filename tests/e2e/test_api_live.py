@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from api.app import create_app
-from api.state import Registry, ServedMap
-from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.api.app import create_app
+from inherit_sg.api.state import Registry, ServedMap
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.store import MapStore
 
 NAME = "live"

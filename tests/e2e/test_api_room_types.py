@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from fastapi.testclient import TestClient
 
-from api.app import create_app
+from inherit_sg.api.app import create_app
 from inherit_sg.config import Config
 from inherit_sg.store import MapStore
 from tests.integration.test_room_types_store import TV_LIVING, room_graph

@@ -20,7 +20,7 @@ from fastapi.testclient import TestClient
 from schemathesis.checks import not_a_server_error, response_schema_conformance
 from schemathesis.core.result import Ok
 
-from api.app import create_app
+from inherit_sg.api.app import create_app
 from inherit_sg.config import Config
 from tests.e2e.oracle_maps import oracle_map
 

@@ -18,8 +18,8 @@ from starlette.responses import JSONResponse
 from starlette.types import Message, Receive, Scope, Send
 from typer.testing import CliRunner
 
-from api.app import create_app
-from api.security_body import BodyLimitMiddleware
+from inherit_sg.api.app import create_app
+from inherit_sg.api.security_body import BodyLimitMiddleware
 from inherit_sg.cli.serve_cmd import exposure_warning, is_loopback, serve
 from inherit_sg.config import Config, ServiceConfig, load_config
 from inherit_sg.errors import ConfigError

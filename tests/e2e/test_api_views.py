@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from api.app import create_app
-from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.api.app import create_app
 from inherit_sg.facade import build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.model import RoomMask
 from inherit_sg.reads.bev import (
     BACKGROUND,

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.cli.main import app
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 
 GROUPS = ("A-C", "D", "E", "F", "overall", "group_mean")
 

@@ -13,7 +13,7 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 
 CLI = [sys.executable, "-m", "inherit_sg.cli.main"]
 

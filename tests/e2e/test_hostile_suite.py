@@ -29,12 +29,12 @@ import pytest
 from fastapi.testclient import TestClient
 from typer.testing import CliRunner
 
-from api.app import create_app
-from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.api.app import create_app
 from inherit_sg.cli.main import app as cli_app
 from inherit_sg.config import Config, ServiceConfig
 from inherit_sg.errors import InheritSGError
 from inherit_sg.facade import MapService, build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.store import MapStore
 
 NAME = "hostile"

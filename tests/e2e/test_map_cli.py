@@ -72,7 +72,7 @@ def test_cypher_refuses_writes_and_reports_errors(apartment: Path, tmp_path: Pat
 
 
 def test_export_import_round_trip_is_lossless(tmp_path: Path) -> None:
-    from ingest.synthetic.generate import generate_house
+    from inherit_sg.ingest.synthetic.generate import generate_house
 
     scene = generate_house(5, 1, 4).scene
     (tmp_path / "scene.json").write_text(json.dumps(scene.to_dict()))

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 import uvicorn
 
-from api.app import create_app
-from ingest.synthetic.generate import generate_house, write_dataset
-from ingest.synthetic.scene import Scene
+from inherit_sg.api.app import create_app
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.store import MapStore
 from tests.local_http import uvicorn_on_loopback
 

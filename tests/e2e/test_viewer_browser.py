@@ -23,10 +23,10 @@ from selenium.webdriver.remote.webdriver import WebDriver
 from selenium.webdriver.support import expected_conditions as ec
 from selenium.webdriver.support.ui import WebDriverWait
 
-from api.app import create_app
-from ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.api.app import create_app
 from inherit_sg.config import Config, ServiceConfig
 from inherit_sg.facade import build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from tests.local_http import uvicorn_on_loopback
 
 REPO_ROOT = Path(__file__).resolve().parents[2]

@@ -10,8 +10,8 @@ import pytest
 from inherit_sg.geometry import FloorChanged, GeometricStream
 from inherit_sg.model import EdgeKind, RoomNode, SceneGraph
 
-generate = pytest.importorskip("ingest.synthetic.generate")
-isg = pytest.importorskip("ingest.isg")
+generate = pytest.importorskip("inherit_sg.ingest.synthetic.generate")
+isg = pytest.importorskip("inherit_sg.ingest.isg")
 geo_eval = pytest.importorskip("inherit_sg.eval.geometry")
 
 
@@ -24,7 +24,7 @@ def two_floor_house(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def test_rooms_and_floors_match_ground_truth(two_floor_house: Path) -> None:
-    from ingest.synthetic.scene import Scene
+    from inherit_sg.ingest.synthetic.scene import Scene
 
     reader = isg.IsgReader(two_floor_house)
     stream = GeometricStream(enqueue_keyframes=False)

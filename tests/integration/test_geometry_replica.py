@@ -26,7 +26,7 @@ REPLICA = (
 def office() -> GeometricStream:
     if not (REPLICA / "office0_mesh.ply").is_file():
         pytest.skip(f"Replica office0 not found at {REPLICA}")
-    from ingest.readers.replica import read_cam_params, read_trajectory
+    from inherit_sg.ingest.readers.replica import read_cam_params, read_trajectory
 
     mesh = trimesh.load(REPLICA / "office0_mesh.ply", process=False)
     scene = embree_scene.EmbreeScene()

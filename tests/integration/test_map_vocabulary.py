@@ -13,8 +13,8 @@ from typing import Any
 import pytest
 from typer.testing import CliRunner
 
-from ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.facade import build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.store import MapStore, mapdir
 from inherit_sg.vocab import vocabulary_info
 

@@ -290,8 +290,8 @@ def _model_reply(body: dict[str, Any]) -> str:
 def test_build_uses_the_endpoint_for_all_three_roles(
     server: tuple[str, ServerState], tmp_path: Any
 ) -> None:
-    from ingest.synthetic.generate import generate_house, write_dataset
     from inherit_sg.facade import build_map
+    from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
     from inherit_sg.model import EdgeKind, Layer
     from inherit_sg.store import MapStore
 

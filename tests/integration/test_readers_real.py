@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ingest.readers import detect_format, open_dataset
+from inherit_sg.ingest.readers import detect_format, open_dataset
 from inherit_sg.model import Frame
 
 REPO_ROOT = Path(__file__).resolve().parents[2]

@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from ingest.isg import IsgReader
-from ingest.mp3d_dataset import HouseWorld, load_house_world
-from ingest.synthetic.generate import make_intrinsics
-from ingest.synthetic.queries import read_queries
-from ingest.synthetic.render import Renderer
-from ingest.synthetic.scene import Scene
-from ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
 from inherit_sg.cli.sim import app
+from inherit_sg.ingest.isg import IsgReader
+from inherit_sg.ingest.mp3d_dataset import HouseWorld, load_house_world
+from inherit_sg.ingest.synthetic.generate import make_intrinsics
+from inherit_sg.ingest.synthetic.queries import read_queries
+from inherit_sg.ingest.synthetic.render import Renderer
+from inherit_sg.ingest.synthetic.scene import Scene
+from inherit_sg.ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 HOUSE = REPO_ROOT / ".." / "shared" / "data" / "real" / "mp3d" / "example_mp3d_scene.house"

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.facade import build_map
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.store import MapStore
 
 KILLS = 20

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from ingest.isg import IsgReader
-from ingest.synthetic.generate import generate_house, write_dataset
-from ingest.synthetic.scene import Scene
 from inherit_sg.cli.sim import app
+from inherit_sg.ingest.isg import IsgReader
+from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
+from inherit_sg.ingest.synthetic.scene import Scene
 
 runner = CliRunner()
 

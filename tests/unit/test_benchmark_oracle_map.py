@@ -11,8 +11,6 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.synthetic.queries import generate_queries
-from ingest.synthetic.scene import Scene
 from inherit_sg.benchmark.ablations import ABLATIONS, FULL, run_ablations, with_change
 from inherit_sg.benchmark.accuracy import accuracy_table, compare
 from inherit_sg.benchmark.mapping_metrics import from_sessions, quality, room_scores
@@ -22,6 +20,8 @@ from inherit_sg.embed import get_text_embedder
 from inherit_sg.errors import ConfigError
 from inherit_sg.eval.mapping import RoomMatching
 from inherit_sg.exchange.scene_truth import scene_to_graph
+from inherit_sg.ingest.synthetic.queries import generate_queries
+from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.mapping.node_text import embed_nodes
 from inherit_sg.model import Keyframe, Pose, Session
 from inherit_sg.store import MapStore

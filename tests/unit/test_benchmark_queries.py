@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from ingest.synthetic.queries import QueryGT, generate_queries, write_queries
 from inherit_sg.benchmark.queries import balanced_subset, load_scene, request_set
 from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.synthetic.queries import QueryGT, generate_queries, write_queries
 from tests.fixtures_scenes import small_scene
 
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ingest.synthetic.scene import FloorGT, RoomGT, Scene
 from inherit_sg.eval.mapping import match_rooms, room_correspondence, room_overlaps
+from inherit_sg.ingest.synthetic.scene import FloorGT, RoomGT, Scene
 from inherit_sg.model import RoomMask, RoomNode
 
 RES = 0.1

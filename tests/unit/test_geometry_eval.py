@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ingest.synthetic.scene import FloorGT, RoomGT
 from inherit_sg.eval.geometry import (
     combine,
     floor_metrics,
@@ -15,6 +14,7 @@ from inherit_sg.eval.geometry import (
     room_metrics,
     true_frame_floors,
 )
+from inherit_sg.ingest.synthetic.scene import FloorGT, RoomGT
 from inherit_sg.model import RoomMask
 
 

@@ -10,13 +10,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ingest.mp3d_dataset import HouseWorld, load_house_world
-from ingest.mp3d_drawn import PROUD, Drawn
-from ingest.mp3d_visibility import visibility_table, walk_visibility
-from ingest.mp3d_world import build_house_world
-from ingest.synthetic.generate import make_intrinsics
-from ingest.synthetic.render import Renderer
-from ingest.synthetic.trajectory import camera_pose
+from inherit_sg.ingest.mp3d_dataset import HouseWorld, load_house_world
+from inherit_sg.ingest.mp3d_drawn import PROUD, Drawn
+from inherit_sg.ingest.mp3d_visibility import visibility_table, walk_visibility
+from inherit_sg.ingest.mp3d_world import build_house_world
+from inherit_sg.ingest.synthetic.generate import make_intrinsics
+from inherit_sg.ingest.synthetic.render import Renderer
+from inherit_sg.ingest.synthetic.trajectory import camera_pose
 
 # (raw name, mpcat40 index, mpcat40 name)
 CATEGORIES = [

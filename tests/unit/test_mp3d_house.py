@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ingest.mp3d_house import REGION_TYPES, REGIONS, parse_house, skip_reason
 from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.mp3d_house import REGION_TYPES, REGIONS, parse_house, skip_reason
 
 
 def test_real_house(real_data: Path) -> None:

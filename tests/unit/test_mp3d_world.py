@@ -10,15 +10,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ingest.mp3d_dataset import HouseWorld, load_house_world
-from ingest.mp3d_polygons import clean_ccw, contains, signed_area, triangulate
-from ingest.mp3d_walk import free_space
-from ingest.mp3d_world import colour_name
-from ingest.readers import detect_format, open_dataset
-from ingest.synthetic.generate import make_intrinsics
-from ingest.synthetic.render import Renderer
-from ingest.synthetic.trajectory import camera_pose
 from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.mp3d_dataset import HouseWorld, load_house_world
+from inherit_sg.ingest.mp3d_polygons import clean_ccw, contains, signed_area, triangulate
+from inherit_sg.ingest.mp3d_walk import free_space
+from inherit_sg.ingest.mp3d_world import colour_name
+from inherit_sg.ingest.readers import detect_format, open_dataset
+from inherit_sg.ingest.synthetic.generate import make_intrinsics
+from inherit_sg.ingest.synthetic.render import Renderer
+from inherit_sg.ingest.synthetic.trajectory import camera_pose
 
 # Regions (code, x0, y0, x1, y1): bedroom | living (door between them), kitchen open to the
 # living room, a bathroom that only a wall separates from everything.

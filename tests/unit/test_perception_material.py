@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ingest.synthetic.render_materials import (
+from inherit_sg.ingest.synthetic.render_materials import (
     MATERIAL_CODE,
     material_code,
     pattern,

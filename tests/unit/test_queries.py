@@ -13,7 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from ingest.synthetic.queries import (
+from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.synthetic.queries import (
     PAPER_SHARES,
     ConversationGT,
     QueryGT,
@@ -25,10 +26,9 @@ from ingest.synthetic.queries import (
     write_conversations,
     write_queries,
 )
-from ingest.synthetic.query_text import article, display, labels_for_noun, plural
-from ingest.synthetic.scene import Scene
-from ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
-from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.synthetic.query_text import article, display, labels_for_noun, plural
+from inherit_sg.ingest.synthetic.scene import Scene
+from inherit_sg.ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
 from tests.fixtures_scenes import house_scene
 
 SEED = 7

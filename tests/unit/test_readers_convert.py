@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from ingest.readers.convert import (
+from inherit_sg.errors import FrameError
+from inherit_sg.ingest.readers.convert import (
     OPENGL_TO_OPENCV,
     Y_UP_TO_Z_UP,
     habitat_to_world,
@@ -18,7 +19,6 @@ from ingest.readers.convert import (
     to_pose,
     y_up_to_z_up,
 )
-from inherit_sg.errors import FrameError
 
 
 def test_y_up_to_z_up_is_a_proper_rotation_sending_up_to_z() -> None:

@@ -9,9 +9,9 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.readers import detect_format, open_dataset
-from ingest.readers.hm3d import Hm3dReader, habitat_intrinsics
 from inherit_sg.errors import DatasetError, FrameError
+from inherit_sg.ingest.readers import detect_format, open_dataset
+from inherit_sg.ingest.readers.hm3d import Hm3dReader, habitat_intrinsics
 from inherit_sg.model import Frame
 
 W, H = 64, 48

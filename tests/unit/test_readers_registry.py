@@ -7,9 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import ingest.readers as readers
-from ingest.isg import IsgReader, IsgWriter
-from ingest.readers import (
+import inherit_sg.ingest.readers as readers
+from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.isg import IsgReader, IsgWriter
+from inherit_sg.ingest.readers import (
     FrameSource,
     ReaderSpec,
     detect_format,
@@ -17,7 +18,6 @@ from ingest.readers import (
     open_dataset,
     register_format,
 )
-from inherit_sg.errors import DatasetError
 from inherit_sg.model import Intrinsics, Pose
 
 LAYOUTS = {
@@ -77,7 +77,7 @@ def test_adding_a_format_is_one_registration(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr(readers, "_REGISTRY", dict(readers._REGISTRY))
-    register_format(ReaderSpec("house", "ingest.isg:IsgReader", ("*.layout",)))
+    register_format(ReaderSpec("house", "inherit_sg.ingest.isg:IsgReader", ("*.layout",)))
     house = tmp_path / "scene.layout"
     house.write_text("ASCII 1.1\n")
     assert detect_format(house) == "house"  # a single file pattern also matches the file itself

@@ -9,9 +9,9 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.readers import FrameSource, detect_format, open_dataset
-from ingest.readers.replica import ReplicaReader
 from inherit_sg.errors import DatasetError, FrameError
+from inherit_sg.ingest.readers import FrameSource, detect_format, open_dataset
+from inherit_sg.ingest.readers.replica import ReplicaReader
 from inherit_sg.model import Frame
 
 W, H, SCALE = 40, 30, 6553.5

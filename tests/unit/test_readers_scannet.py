@@ -8,9 +8,9 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.readers import detect_format, open_dataset
-from ingest.readers.scannet import ScanNetReader
 from inherit_sg.errors import DatasetError, FrameError
+from inherit_sg.ingest.readers import detect_format, open_dataset
+from inherit_sg.ingest.readers.scannet import ScanNetReader
 
 DW, DH, DF = 80, 60, 60.0  # depth camera: size and focal length, centred principal point
 

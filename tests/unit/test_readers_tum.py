@@ -9,9 +9,15 @@ import cv2
 import numpy as np
 import pytest
 
-from ingest.readers import detect_format, open_dataset
-from ingest.readers.tum import TUM_CAMERAS, TumReader, associate, camera_from_path, pose_at
 from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.readers import detect_format, open_dataset
+from inherit_sg.ingest.readers.tum import (
+    TUM_CAMERAS,
+    TumReader,
+    associate,
+    camera_from_path,
+    pose_at,
+)
 from inherit_sg.model import Intrinsics
 
 T0 = 100.0

@@ -8,7 +8,6 @@ from pathlib import Path
 
 import pytest
 
-from ingest.synthetic.queries import QueryGT
 from inherit_sg.errors import InputError
 from inherit_sg.eval.retrieval import (
     GroundTruth,
@@ -18,6 +17,7 @@ from inherit_sg.eval.retrieval import (
     percentile,
     summarise,
 )
+from inherit_sg.ingest.synthetic.queries import QueryGT
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.conversation import Conversation
 from inherit_sg.retrieval.history import load_conversation, save_conversation

@@ -6,12 +6,12 @@ from collections import defaultdict
 
 import pytest
 
-from ingest.synthetic.arrange import support_spots
-from ingest.synthetic.catalogue import REAL_MATERIALS
-from ingest.synthetic.colour_naming import BASIC_TERMS, colour_term
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.geom import Rect
-from ingest.synthetic.vocabulary import COLOURS, OBJECT_KINDS, SIZE_WORDS
+from inherit_sg.ingest.synthetic.arrange import support_spots
+from inherit_sg.ingest.synthetic.catalogue import REAL_MATERIALS
+from inherit_sg.ingest.synthetic.colour_naming import BASIC_TERMS, colour_term
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.geom import Rect
+from inherit_sg.ingest.synthetic.vocabulary import COLOURS, OBJECT_KINDS, SIZE_WORDS
 
 HOUSES = ((0, "real"), (7, "real"), (21, "real"), (7, "classic"))
 

@@ -8,12 +8,12 @@ from collections import deque
 import numpy as np
 import pytest
 
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.geom import Rect
-from ingest.synthetic.layout import plan_house
-from ingest.synthetic.scene import Scene
-from ingest.synthetic.taxonomy import ROOM_TYPES
 from inherit_sg.errors import InputError
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.geom import Rect
+from inherit_sg.ingest.synthetic.layout import plan_house
+from inherit_sg.ingest.synthetic.scene import Scene
+from inherit_sg.ingest.synthetic.taxonomy import ROOM_TYPES
 
 
 def _poly_rect(poly: list[list[float]]) -> Rect:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ingest.synthetic.noise import (
+from inherit_sg.ingest.synthetic.noise import (
     CONFUSIONS,
     LEVELS,
     PoseDrift,
@@ -14,8 +14,8 @@ from ingest.synthetic.noise import (
     noise_config,
     renumber,
 )
-from ingest.synthetic.trajectory import camera_pose
-from ingest.synthetic.vocabulary import OBJECT_KINDS
+from inherit_sg.ingest.synthetic.trajectory import camera_pose
+from inherit_sg.ingest.synthetic.vocabulary import OBJECT_KINDS
 
 LABELS = ("chair", "sofa", "table", "mug", "cabinet", "lamp", "bed", "book")
 

@@ -9,23 +9,23 @@ from collections import Counter
 import numpy as np
 import pytest
 
-from ingest.synthetic.catalogue import NEW_KINDS
-from ingest.synthetic.colour_models import PALETTES, sample_colour
-from ingest.synthetic.colour_naming import (
+from inherit_sg.ingest.synthetic.catalogue import NEW_KINDS
+from inherit_sg.ingest.synthetic.colour_models import PALETTES, sample_colour
+from inherit_sg.ingest.synthetic.colour_naming import (
     BASIC_TERMS,
     CENTROIDS,
     colour_term,
     is_clear,
     srgb_to_lab,
 )
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.layout import plan_house
-from ingest.synthetic.queries import PAPER_SHARES, category_shares, generate_queries
-from ingest.synthetic.render_materials import MATERIAL_CODE, finish, pattern
-from ingest.synthetic.room_contents import ROOM_CONTENTS, parse_members
-from ingest.synthetic.taxonomy import ROOM_TYPES
-from ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
-from ingest.synthetic.vocabulary import CLASSIC_KINDS, COLOURS, OBJECT_KINDS
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.layout import plan_house
+from inherit_sg.ingest.synthetic.queries import PAPER_SHARES, category_shares, generate_queries
+from inherit_sg.ingest.synthetic.render_materials import MATERIAL_CODE, finish, pattern
+from inherit_sg.ingest.synthetic.room_contents import ROOM_CONTENTS, parse_members
+from inherit_sg.ingest.synthetic.taxonomy import ROOM_TYPES
+from inherit_sg.ingest.synthetic.truth import ObjectSpec, SceneIndex, evaluate
+from inherit_sg.ingest.synthetic.vocabulary import CLASSIC_KINDS, COLOURS, OBJECT_KINDS
 
 
 @pytest.fixture(scope="module")

@@ -5,14 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ingest.synthetic.generate import generate_house, make_intrinsics
-from ingest.synthetic.geom import Rect
-from ingest.synthetic.placement import Placed
-from ingest.synthetic.plan import WALL_T, FloorPlan, HousePlan, RoomPlan
-from ingest.synthetic.render import Renderer
-from ingest.synthetic.trajectory import camera_pose
-from ingest.synthetic.walls import build_walls
-from ingest.synthetic.world import build_world
+from inherit_sg.ingest.synthetic.generate import generate_house, make_intrinsics
+from inherit_sg.ingest.synthetic.geom import Rect
+from inherit_sg.ingest.synthetic.placement import Placed
+from inherit_sg.ingest.synthetic.plan import WALL_T, FloorPlan, HousePlan, RoomPlan
+from inherit_sg.ingest.synthetic.render import Renderer
+from inherit_sg.ingest.synthetic.trajectory import camera_pose
+from inherit_sg.ingest.synthetic.walls import build_walls
+from inherit_sg.ingest.synthetic.world import build_world
 
 
 def _box_room() -> tuple[HousePlan, Placed]:

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from ingest.synthetic.generate import generate_house
-from ingest.synthetic.trajectory import camera_pose
+from inherit_sg.ingest.synthetic.generate import generate_house
+from inherit_sg.ingest.synthetic.trajectory import camera_pose
 
 
 @pytest.fixture(scope="module", params=[(7, 2), (3, 3)])

@@ -6,8 +6,9 @@ from dataclasses import replace
 
 import pytest
 
-from ingest.synthetic.scene import Scene
-from ingest.synthetic.truth import (
+from inherit_sg.errors import DatasetError
+from inherit_sg.ingest.synthetic.scene import Scene
+from inherit_sg.ingest.synthetic.truth import (
     AreaConstraint,
     AttributeConstraint,
     FloorConstraint,
@@ -17,7 +18,7 @@ from ingest.synthetic.truth import (
     SceneIndex,
     evaluate,
 )
-from ingest.synthetic.truth_predicates import (
+from inherit_sg.ingest.synthetic.truth_predicates import (
     above,
     between,
     floor_levels,
@@ -30,7 +31,6 @@ from ingest.synthetic.truth_predicates import (
     supports,
     under,
 )
-from inherit_sg.errors import DatasetError
 from tests.fixtures_scenes import small_scene
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ingest.view_coverage import SIGHT_M, coverage_stops, sight
+from inherit_sg.ingest.view_coverage import SIGHT_M, coverage_stops, sight
 
 RES = 0.1
 

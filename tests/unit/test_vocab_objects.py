@@ -252,7 +252,7 @@ def test_detection_prompts_are_common_canonical_kinds() -> None:
 def test_synthetic_world_words_reach_their_kinds() -> None:
     """Every word the synthetic houses use for a kind reaches it: as the kind, as a
     general word covering it, or as a kind it is a kind of ("table" → dining table)."""
-    from ingest.synthetic.vocabulary import OBJECT_KINDS
+    from inherit_sg.ingest.synthetic.vocabulary import OBJECT_KINDS
 
     for kind in OBJECT_KINDS.values():
         assert kind.label in obj.kinds()

@@ -18,8 +18,8 @@ import math
 
 import numpy as np
 
-from ingest.synthetic.scene import FloorGT, ObjectGT, RoomGT, Scene
 from inherit_sg.exchange.scene_truth import scene_to_graph
+from inherit_sg.ingest.synthetic.scene import FloorGT, ObjectGT, RoomGT, Scene
 from inherit_sg.model import Edge, EdgeKind, ObjectNode, Pose, RoomNode, SceneGraph
 from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
 

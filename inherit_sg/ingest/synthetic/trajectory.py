@@ -1,0 +1,192 @@
+"""Teleoperation-like exploration walks: every room of every storey, lowest first.
+
+On each storey the walker goes from room to room (nearest unvisited first, along
+shortest paths through doors and around furniture), stops at a roomy spot in each room
+and looks around in place, then climbs the stairs to the next storey with the camera
+following the steps. Frames come about every 0.5 m of walking and every 30° of turning;
+the camera looks slightly down and its yaw never jumps by more than 30°.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from itertools import pairwise
+
+import numpy as np
+
+from inherit_sg.ingest.synthetic.placement import Placed
+from inherit_sg.ingest.synthetic.plan import HousePlan, RoomPlan, StairPlan
+from inherit_sg.ingest.synthetic.planner import FloorMap
+from inherit_sg.model import Pose
+
+STEP = 0.5  # metres between frames while walking
+TURN = math.radians(30.0)  # largest yaw change between frames
+LOOK_FRAMES = 12  # frames of the in-place look-around (360°)
+
+
+@dataclass
+class Trajectory:
+    """Camera poses with the storey, room and activity of each frame."""
+
+    poses: list[Pose] = field(default_factory=list)
+    floors: list[int] = field(default_factory=list)
+    rooms: list[str | None] = field(default_factory=list)
+    activity: list[str] = field(default_factory=list)  # walk | look | turn | stairs
+
+    def __len__(self) -> int:
+        return len(self.poses)
+
+
+def camera_pose(x: float, y: float, z: float, yaw: float, pitch: float) -> Pose:
+    """T_world_camera for a camera at (x, y, z) heading ``yaw`` (from +x, CCW) and looking
+    ``pitch`` radians below the horizon (OpenCV axes: x right, y down, z forward)."""
+    forward = np.array(
+        [math.cos(yaw) * math.cos(pitch), math.sin(yaw) * math.cos(pitch), -math.sin(pitch)]
+    )
+    right = np.array([math.sin(yaw), -math.cos(yaw), 0.0])
+    down = np.cross(forward, right)
+    m = np.eye(4)
+    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = right, down, forward, (x, y, z)
+    return Pose.from_matrix(m)
+
+
+def _wrap(a: float) -> float:
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+class _Walker:
+    def __init__(self, plan: HousePlan, rng: np.random.Generator) -> None:
+        self.plan = plan
+        self.rng = rng
+        self.traj = Trajectory()
+        self.eye = float(rng.uniform(1.3, 1.5))
+        self.pitch = math.radians(float(rng.uniform(10.0, 15.0)))
+        self.x = self.y = self.yaw = 0.0
+        self.floor = 0
+
+    def emit(self, activity: str, z: float | None = None) -> None:
+        fl = self.plan.floors[self.floor]
+        height = (fl.z if z is None else z) + self.eye + float(self.rng.normal(0.0, 0.008))
+        pitch = self.pitch + math.radians(float(self.rng.normal(0.0, 1.0)))
+        yaw = self.yaw + math.radians(float(self.rng.normal(0.0, 1.0)))
+        self.traj.poses.append(camera_pose(self.x, self.y, height, yaw, pitch))
+        self.traj.floors.append(self.floor)
+        room = fl.room_at(self.x, self.y) if activity != "stairs" else None
+        self.traj.rooms.append(room.id if room else None)
+        self.traj.activity.append(activity)
+
+    def turn_to(self, yaw: float) -> None:
+        delta = _wrap(yaw - self.yaw)
+        steps = math.ceil(abs(delta) / TURN - 1e-9)
+        for _k in range(1, steps):
+            self.yaw = _wrap(self.yaw + delta / steps)
+            self.emit("turn")
+        self.yaw = _wrap(yaw)
+
+    def walk(self, points: list[tuple[float, float]]) -> None:
+        """Follow a polyline, a frame every ``STEP`` metres, heading smoothed ahead."""
+        dense = _resample(points, STEP)
+        for k, (x, y) in enumerate(dense[1:], start=1):
+            ahead = dense[min(k + 1, len(dense) - 1)]
+            dx, dy = ahead[0] - dense[k - 1][0], ahead[1] - dense[k - 1][1]
+            if math.hypot(dx, dy) > 1e-6:
+                self.turn_to(math.atan2(dy, dx))
+            self.x, self.y = x, y
+            self.emit("walk")
+
+    def look_around(self) -> None:
+        direction = 1.0 if self.rng.random() < 0.5 else -1.0
+        for _ in range(LOOK_FRAMES):
+            self.yaw = _wrap(self.yaw + direction * 2 * math.pi / LOOK_FRAMES)
+            self.emit("look")
+
+    def climb(self, stairs: StairPlan) -> None:
+        heading = math.pi / 2 if stairs.direction > 0 else -math.pi / 2
+        self.turn_to(heading)
+        y_end = stairs.y_top + stairs.direction * 0.7
+        n = max(2, math.ceil(abs(y_end - self.y) / STEP))
+        y_start = self.y
+        for k in range(1, n + 1):
+            self.y = y_start + (y_end - y_start) * k / n
+            z = stairs.surface_z(self.y)
+            if k == n:
+                self.floor = stairs.from_floor + 1
+                self.emit("walk")
+            else:
+                self.emit("stairs", z=z)
+
+
+def _resample(points: list[tuple[float, float]], step: float) -> list[tuple[float, float]]:
+    if len(points) < 2:
+        return list(points)
+    out = [points[0]]
+    carry = 0.0
+    for (ax, ay), (bx, by) in pairwise(points):
+        seg = math.hypot(bx - ax, by - ay)
+        s = step - carry
+        while s <= seg:
+            out.append((ax + (bx - ax) * s / seg, ay + (by - ay) * s / seg))
+            s += step
+        carry = seg - (s - step)
+    if math.hypot(out[-1][0] - points[-1][0], out[-1][1] - points[-1][1]) > 0.15:
+        out.append(points[-1])
+    return out
+
+
+def _viewpoint(fm: FloorMap, room: RoomPlan, reach: np.ndarray) -> tuple[int, int] | None:
+    """A roomy reachable cell of ``room`` close to its middle."""
+    g = fm.grid
+    inner = room.rect.grown(-0.15)
+    mask = np.zeros(fm.free.shape, dtype=bool)
+    g.fill(mask, inner)
+    mask &= reach
+    cells = np.argwhere(mask)
+    if len(cells) == 0:
+        return None
+    xs = g.bounds.x0 + cells[:, 1] * g.res
+    ys = g.bounds.y0 + cells[:, 0] * g.res
+    off = np.hypot(xs - room.rect.cx, ys - room.rect.cy) / max(room.rect.w, room.rect.h)
+    score = np.minimum(fm.clearance[cells[:, 0], cells[:, 1]], 0.9) - 0.6 * off
+    best = cells[int(np.argmax(score))]
+    return int(best[0]), int(best[1])
+
+
+def _tour_floor(w: _Walker, fm: FloorMap, rooms: list[RoomPlan]) -> None:
+    start = fm.snap(w.x, w.y)
+    reach = fm.labels == fm.labels[start]
+    targets = {room.id: vp for room in rooms if (vp := _viewpoint(fm, room, reach)) is not None}
+    while targets:
+        dist, pred = fm.search(fm.snap(w.x, w.y))
+        room_id = min(sorted(targets), key=lambda r: fm.cost_to(dist, targets[r]))
+        goal = targets.pop(room_id)
+        w.walk(fm.path(pred, goal))
+        w.look_around()
+
+
+def plan_trajectory(plan: HousePlan, objects: list[Placed], rng: np.random.Generator) -> Trajectory:
+    """An exploration walk through every room of every storey, lowest storey first."""
+    w = _Walker(plan, rng)
+    w.x, w.y = _front_door(plan)
+    w.yaw = math.pi / 2 if w.y < plan.footprint.cy else -math.pi / 2
+    w.emit("walk")
+    for floor in plan.floors:
+        w.floor = floor.index
+        fm = FloorMap(plan, floor, objects)
+        _tour_floor(w, fm, floor.rooms)
+        stairs = next((s for s in plan.stairs if s.from_floor == floor.index), None)
+        if stairs is None:
+            break
+        landing = (stairs.rect.cx, stairs.y_bottom - stairs.direction * 0.7)
+        _dist, pred = fm.search(fm.snap(w.x, w.y))
+        w.walk([*fm.path(pred, fm.snap(*landing)), landing])
+        w.climb(stairs)
+    return w.traj
+
+
+def _front_door(plan: HousePlan) -> tuple[float, float]:
+    """A point just inside the front door (the door of the ground floor with one room)."""
+    door = next(d for d in plan.floors[0].doors if len(d.rooms) == 1)
+    x, y = door.center_xy
+    hall = plan.room(door.rooms[0]).rect
+    return x, y + (0.8 if abs(y - hall.y0) < abs(y - hall.y1) else -0.8)
