@@ -1,4 +1,4 @@
-"""The REST service of INHerit-SG: a FastAPI app (:func:`api.app.create_app`) that serves
+"""The REST service of INHerit-SG: a FastAPI app (:func:`inherit_sg.api.app.create_app`) that serves
 one or more maps under ``/v1/maps/{name}/…`` (read-only; writable while a live mapping
 session runs) as a thin face over :class:`inherit_sg.facade.MapService`, plus the web
 viewer at ``/``."""

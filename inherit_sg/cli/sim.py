@@ -55,14 +55,14 @@ DATASET_ENTRIES = (
 
 
 class NoiseLevel(StrEnum):
-    """Perception noise levels (see ingest.synthetic.noise)."""
+    """Perception noise levels (see inherit_sg.ingest.synthetic.noise)."""
 
     clean = "clean"
     noisy = "noisy"
 
 
 class HouseStyle(StrEnum):
-    """Generators of synthetic houses (see ingest.synthetic.generate)."""
+    """Generators of synthetic houses (see inherit_sg.ingest.synthetic.generate)."""
 
     real = "real"
     classic = "classic"

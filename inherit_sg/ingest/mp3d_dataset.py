@@ -9,7 +9,7 @@ Coordinates stay the file's own (z-up metres): object centroids in ``scene.json`
 the ``O`` lines' box centres, camera poses are in the same frame. The ground truth adds
 what the world builder decided: each object's rendered colour name (``colour``
 attribute), how its box was adjusted to be seen (``drawn`` attribute, only when it was:
-see :mod:`ingest.mp3d_drawn`) and every opening between rooms as a door (``DoorGT``).
+see :mod:`inherit_sg.ingest.mp3d_drawn`) and every opening between rooms as a door (``DoorGT``).
 """
 
 from __future__ import annotations
@@ -126,7 +126,7 @@ def write_house_dataset(
     shadows: bool = False,
 ) -> DatasetSummary:
     """Walk ``house``, render every pose and write an isg folder with ground truth
-    (arguments as in :func:`ingest.synthetic.generate.write_dataset`)."""
+    (arguments as in :func:`inherit_sg.ingest.synthetic.generate.write_dataset`)."""
     return write_walk(
         house.world,
         house.lights,

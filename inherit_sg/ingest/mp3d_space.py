@@ -89,7 +89,7 @@ class LevelSpace:
 
     def block(self, corners: list[np.ndarray]) -> None:
         """Add the footprints of further furniture boxes ((8, 3) corners each): boxes
-        drawn larger than annotated (:mod:`ingest.mp3d_drawn`) must not be walked into."""
+        drawn larger than annotated (:mod:`inherit_sg.ingest.mp3d_drawn`) must not be walked into."""
         for c in corners:
             self.furniture |= rasterise(self.grid, convex_hull(np.asarray(c)[:, :2]))
         self.furniture_clearance = self.grid.clearance(self.furniture)

@@ -3,10 +3,10 @@ instance mask covers in every rendered frame of the walk.
 
 The written isg frames renumber instance ids per frame (nothing downstream may link
 frames through them), so this module renders the walk again with the true ids: the
-same world, lights, intrinsics and poses as :func:`ingest.mp3d_dataset.write_house_dataset`
+same world, lights, intrinsics and poses as :func:`inherit_sg.ingest.mp3d_dataset.write_house_dataset`
 (clean masks; the perception noise model only drops, splits and merges masks).
 
-Run ``python -m ingest.mp3d_visibility HOUSE [--min-pixels 61 ...]`` for a table of the
+Run ``python -m inherit_sg.ingest.mp3d_visibility HOUSE [--min-pixels 61 ...]`` for a table of the
 objects with the number of frames in which each has a mask of at least N pixels, and
 the objects never visible at all. Ground truth for evaluation only.
 """
@@ -57,7 +57,7 @@ def walk_visibility(
     height: int = 480,
     max_frames: int | None = None,
 ) -> list[ObjectSight]:
-    """Render the walk of ``house`` (an :class:`ingest.mp3d_dataset.HouseWorld`) with true
+    """Render the walk of ``house`` (an :class:`inherit_sg.ingest.mp3d_dataset.HouseWorld`) with true
     instance ids and count each object's pixels per frame (objects in scene order)."""
     from inherit_sg.ingest.mp3d_dataset import HouseWorld
 

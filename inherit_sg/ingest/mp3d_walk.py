@@ -7,7 +7,7 @@ region nearest-first along shortest paths (the synthetic planner's Dijkstra sear
 path shortcutting), stops at a roomy spot in each one and looks around in place; a region
 it cannot enter is looked into from the nearest reachable spot. A region that one stop
 does not see (a bed or sofa hides what stands behind it, an L-shaped room has a corner)
-gets further stops (:mod:`ingest.view_coverage`), and every other frame of a look-around
+gets further stops (:mod:`inherit_sg.ingest.view_coverage`), and every other frame of a look-around
 tilts up to take in what hangs high on the walls and from the ceiling. The synthetic walker's
 turning and stepping rules apply: a frame every 0.5 m and every 30° of turning. Levels
 are walked lowest first; the camera moves between levels without stairs in between.

@@ -3,9 +3,9 @@
 * floors: each region's outline, ear-clipped, at the region's floor height; ceilings the
   same triangles at the region's ceiling; a slab under and a roof over each level so
   nothing shows through the seams between regions;
-* walls: the pieces planned by :mod:`ingest.mp3d_walls` (gaps at doors and open plans,
+* walls: the pieces planned by :mod:`inherit_sg.ingest.mp3d_walls` (gaps at doors and open plans,
   lintels above them), as thin boxes just outside each region's outline;
-* objects: the boxes :mod:`ingest.mp3d_drawn` decides (8 corners, 12 triangles each)
+* objects: the boxes :mod:`inherit_sg.ingest.mp3d_drawn` decides (8 corners, 12 triangles each)
   with the object's instance id: the file's oriented box, flattened for floor coverings,
   kept under the ceiling, extended to stand proud of a box that buries it; doors are
   rendered as frames (two jambs and a head) so their gap stays passable.
@@ -128,7 +128,7 @@ def build_house_world(
     house: HouseFile, levels: list[Level], walls: WallPlan, drawn: dict[str, Drawn] | None = None
 ) -> WorldMesh:
     """Triangulate regions, walls and object boxes of a parsed house; ``drawn`` says how
-    each object is drawn (default: :func:`ingest.mp3d_drawn.drawn_objects`)."""
+    each object is drawn (default: :func:`inherit_sg.ingest.mp3d_drawn.drawn_objects`)."""
     if drawn is None:
         drawn = drawn_objects(house, levels, [LevelSpace(house, lv) for lv in levels], walls)
     mesh = _Mesh()

@@ -1,4 +1,4 @@
-"""Stops that let look-arounds see a whole room (ingest/view_coverage.py)."""
+"""Stops that let look-arounds see a whole room (inherit_sg/ingest/view_coverage.py)."""
 
 from __future__ import annotations
 

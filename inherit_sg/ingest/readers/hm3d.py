@@ -17,7 +17,7 @@ sensor: horizontal field of view ``hfov_deg`` (90° by default), square pixels, 
 point at the image centre, image size from the first colour image.
 
 Coordinates: Habitat's world is y-up and its sensors use OpenGL axes (x right, y up,
-z backward). Poses are converted with :func:`ingest.readers.convert.habitat_to_world`:
+z backward). Poses are converted with :func:`inherit_sg.ingest.readers.convert.habitat_to_world`:
 world (x, y, z) -> (x, -z, y) so Habitat's up becomes z, and the camera's y and z axes
 are flipped into OpenCV's. A frame whose pose is not finite, or that misses its colour,
 depth or pose file, is left out and listed in ``skipped``.

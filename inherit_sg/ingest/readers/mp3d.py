@@ -2,7 +2,7 @@
 
 A ``.house`` file holds a layout, not images: regions with floor outlines, oriented
 object boxes with categories. Opening one builds the same world and exploration walk as
-``inherit-sg sim render-house`` (:mod:`ingest.mp3d_dataset`) and :meth:`Mp3dReader.read`
+``inherit-sg sim render-house`` (:mod:`inherit_sg.ingest.mp3d_dataset`) and :meth:`Mp3dReader.read`
 renders frame ``index`` of that walk through the same noise model, so mapping a
 ``.house`` directly gives the frames a rendered folder would hold (depth in whole
 millimetres, as a written depth PNG stores it). Render the folder instead when the

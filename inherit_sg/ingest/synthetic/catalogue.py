@@ -7,11 +7,11 @@ table (``category_mapping.tsv``, whose rows are ordered by annotation count; the
 table is the ``C`` lines of every ``.house`` file): a low rank is a frequent category.
 Kinds without a rank are HM3D / ScanNet categories that Matterport3D names rarely or
 otherwise. How often each kind is placed follows these frequencies through the room
-contents (:mod:`ingest.synthetic.room_contents`).
+contents (:mod:`inherit_sg.ingest.synthetic.room_contents`).
 
-Placement flags are those of :class:`~ingest.synthetic.kinds.ObjectKind`: ``small``
+Placement flags are those of :class:`~inherit_sg.ingest.synthetic.kinds.ObjectKind`: ``small``
 kinds stand on one of ``rests_on`` (``"floor"``: against a wall when nothing else fits;
-``"wall"``: hung on a wall at :data:`~ingest.synthetic.furnish_real.WALL_HANG` instead),
+``"wall"``: hung on a wall at :data:`~inherit_sg.ingest.synthetic.furnish_real.WALL_HANG` instead),
 ``wall`` kinds stand against a wall, ``mount_height`` kinds hang on a wall, ``ceiling``
 kinds hang from the ceiling, ``window`` kinds dress a window, the rest stand in the room.
 """

@@ -6,7 +6,7 @@ saturated textiles and decorations. An object's palette comes from its kind when
 kind has one of its own (plants are green, toilets white) and otherwise from its
 material (wood is mostly wood-toned, sometimes painted; leather is brown, black or tan).
 Sampling returns sRGB 0–255; the ground truth names the colour with
-:mod:`ingest.synthetic.colour_naming`.
+:mod:`inherit_sg.ingest.synthetic.colour_naming`.
 """
 
 from __future__ import annotations

@@ -3,8 +3,8 @@ group is placed around an anchor piece, small objects stand on surfaces, and the
 must stay walkable between its doors.
 
 The classic world's groups come from ``AREA_TEMPLATES`` and are placed here; the
-real-world generator's (:mod:`ingest.synthetic.room_contents`) by
-:mod:`ingest.synthetic.furnish_real`.
+real-world generator's (:mod:`inherit_sg.ingest.synthetic.room_contents`) by
+:mod:`inherit_sg.ingest.synthetic.furnish_real`.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Furnishing the rooms of the real-world generator: the groups of
-:mod:`ingest.synthetic.room_contents` placed where their kinds belong.
+:mod:`inherit_sg.ingest.synthetic.room_contents` placed where their kinds belong.
 
 Per group: the anchor (against a wall or free, with room for chairs), standing members
 arranged around it (chairs at tables, nightstands beside beds, appliances along the
@@ -9,7 +9,7 @@ beside a door), curtains and blinds at the room's windows, ceiling fixtures over
 table or the room's middle, and small objects on the supporters their kind lists (on a
 counter, a shelf board, a bed's mattress, a sofa's seat), else on the floor against a
 wall when the kind may stand there. Every object gets a colour sampled from its
-palette (named by :mod:`ingest.synthetic.colour_naming`), a material and a Matterport3D
+palette (named by :mod:`inherit_sg.ingest.synthetic.colour_naming`), a material and a Matterport3D
 raw name.
 """
 

@@ -1,7 +1,7 @@
 """One kind of object of the synthetic world: how it looks, where it goes, what it is for.
 
-Shared by the classic vocabulary (:mod:`ingest.synthetic.vocabulary`) and the real-world
-catalogue (:mod:`ingest.synthetic.catalogue`).
+Shared by the classic vocabulary (:mod:`inherit_sg.ingest.synthetic.vocabulary`) and the real-world
+catalogue (:mod:`inherit_sg.ingest.synthetic.catalogue`).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ class ObjectKind:
     small: bool = False  # stands on a surface rather than the floor
     wall: bool = False  # placed against a wall
     mount_height: float = 0.0  # bottom height above the floor (wall-mounted things)
-    # Real-world catalogue (ingest.synthetic.catalogue); the classic world ignores these.
+    # Real-world catalogue (inherit_sg.ingest.synthetic.catalogue); the classic world ignores these.
     mpcat40: str = ""  # Matterport3D's 40-class grouping
     raw: tuple[str, ...] = ()  # Matterport3D raw category names, most frequent first
     mp3d_rank: int | None = None  # row of raw[0] in Matterport3D's category table (by count)

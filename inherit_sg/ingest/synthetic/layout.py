@@ -5,7 +5,7 @@ stairs between storeys.
 Every storey shares one rectangular footprint. A hallway runs across the whole depth of
 the house (along y) and holds the straight staircases; the regions on either side of it
 are split recursively into rooms. Doors, windows and wall lines are added by
-:mod:`ingest.synthetic.openings`.
+:mod:`inherit_sg.ingest.synthetic.openings`.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ An open-plan ground floor joins the kitchen, the dining room and the living room
 sometimes the entryway) into one space: the borders they share get no wall and no door,
 while each keeps its own region (polygon and type) in the ground truth, as Matterport3D
 annotators draw them. A foyer may also open onto the hallway. The open spans are
-:class:`~ingest.synthetic.plan.Opening` records of kind ``"open"`` in
+:class:`~inherit_sg.ingest.synthetic.plan.Opening` records of kind ``"open"`` in
 ``FloorPlan.open_edges``; wall lines leave them out, and furnishing keeps a strip along
 them clear so the joined rooms stay one walkable space.
 """

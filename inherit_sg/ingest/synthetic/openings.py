@@ -2,7 +2,7 @@
 
 Doors form a spanning tree over the room adjacency graph rooted at the hallway (every
 room reachable), plus a few extra doors between rooms that often connect (kitchen and
-dining room, …); rooms joined by an open border (:mod:`ingest.synthetic.open_plan`)
+dining room, …); rooms joined by an open border (:mod:`inherit_sg.ingest.synthetic.open_plan`)
 need no door between them. Windows sit on exterior walls. Wall lines are the union of
 room borders, open spans left out.
 """

@@ -106,7 +106,7 @@ class SceneFacts:
     def colour_clear(self, obj: ObjectGT) -> bool:
         """Whether people would name ``obj``'s colour without hesitating: always for a
         palette colour, for a sampled one (``attributes["rgb"]``) when it lies well
-        inside its basic colour term (:func:`~ingest.synthetic.colour_naming.is_clear`)."""
+        inside its basic colour term (:func:`~inherit_sg.ingest.synthetic.colour_naming.is_clear`)."""
         rgb = obj.attributes.get("rgb")
         return rgb is None or is_clear(tuple(rgb))
 

@@ -7,7 +7,7 @@ point light at the ceiling of the room the hit point is in, a weak sky light and
 ambient term, with a small procedural texture so flat-coloured objects vary across
 their surface, and a material look per object part (grain, weave, speckle, specular
 sheen, reflections of the room on metal, glass and glaze:
-:mod:`ingest.synthetic.render_materials`); optional shadow rays darken what the room
+:mod:`inherit_sg.ingest.synthetic.render_materials`); optional shadow rays darken what the room
 light cannot see.
 """
 

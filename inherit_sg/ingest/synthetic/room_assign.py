@@ -1,12 +1,12 @@
 """Which rectangle of a storey gets which room type, and which rooms join without walls.
 
-Big rooms go to big rectangles (:data:`~ingest.synthetic.taxonomy.ROOM_TYPES` size ranks),
+Big rooms go to big rectangles (:data:`~inherit_sg.ingest.synthetic.taxonomy.ROOM_TYPES` size ranks),
 with placement rules first: an open-plan ground floor puts the living room, the kitchen
 and the dining room on rectangles that touch along at least
-:data:`~ingest.synthetic.open_plan.OPEN_MIN` (the biggest such group); a foyer
+:data:`~inherit_sg.ingest.synthetic.open_plan.OPEN_MIN` (the biggest such group); a foyer
 (entryway) takes a small rectangle beside the hallway at the front or back of the
 house (its street wall gets the front door); a garage needs a side wall and room for a
-car, a porch or balcony an exterior wall. A type that finds no place becomes a stand-in (:func:`~ingest.synthetic.taxonomy.fallback`).
+car, a porch or balcony an exterior wall. A type that finds no place becomes a stand-in (:func:`~inherit_sg.ingest.synthetic.taxonomy.fallback`).
 """
 
 from __future__ import annotations

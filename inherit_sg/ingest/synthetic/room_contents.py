@@ -7,7 +7,7 @@ The first group of a room is always placed; the others come with their chance, a
 as the room's floor area allows. The chances follow how often Matterport3D annotates
 each kind (pictures, pillows, chairs, lights, curtains, cabinets, plants and towels are
 everywhere; pool tables and dartboards are rare); where a kind goes is the kind's own
-business (:mod:`ingest.synthetic.catalogue`: on which supporters, on a wall, at a window,
+business (:mod:`inherit_sg.ingest.synthetic.catalogue`: on which supporters, on a wall, at a window,
 from the ceiling).
 """
 

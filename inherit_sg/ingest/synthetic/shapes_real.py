@@ -2,7 +2,7 @@
 appliances with doors, glass and cooktops, screens, frames, soft furnishings, fixtures.
 
 Objects of real-world houses carry ``params["real"]``; their kinds take a builder from
-:data:`REAL_SHAPES` when there is one (classic houses keep :mod:`ingest.synthetic.shapes`).
+:data:`REAL_SHAPES` when there is one (classic houses keep :mod:`inherit_sg.ingest.synthetic.shapes`).
 Every shape fits the object's box ``[-w/2, w/2] × [-d/2, d/2] × [0, h]``, front at -y.
 Parts in a fixed colour (a screen, a cooktop, a painting's canvas) have no material look
 unless they name one (a mirror's glass).

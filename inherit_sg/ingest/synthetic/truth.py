@@ -2,7 +2,7 @@
 
 :func:`evaluate` returns ALL object ids satisfying an :class:`ObjectSpec` (in scene
 order), using the deterministic predicates and thresholds documented in
-:mod:`ingest.synthetic.truth_predicates`. Semantics:
+:mod:`inherit_sg.ingest.synthetic.truth_predicates`. Semantics:
 
 - target: label in ``labels`` (any label when empty) and, with ``function``, a kind that
   serves it; structural objects (doors, windows) are targets and landmarks like any other;

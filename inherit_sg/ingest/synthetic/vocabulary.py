@@ -7,7 +7,7 @@ its understanding of words from its own lexicon and embeddings.
 Two worlds draw from it: the classic one (nine room types, the ``CLASSIC_KINDS``, the
 twelve-colour ``COLOURS`` palette, ``AREA_TEMPLATES``) and the default real-world one
 (Matterport3D room types, every kind of ``OBJECT_KINDS``, continuous colours named by
-:mod:`ingest.synthetic.colour_naming`, :mod:`ingest.synthetic.room_contents`).
+:mod:`inherit_sg.ingest.synthetic.colour_naming`, :mod:`inherit_sg.ingest.synthetic.room_contents`).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from inherit_sg.ingest.synthetic.catalogue import CLASSIC_EXTRAS, NEW_KINDS
 from inherit_sg.ingest.synthetic.kinds import ObjectKind
 
 # Room types with the words people use for them: the classic world's nine and the
-# Matterport3D region categories the real-world generator draws (ingest.synthetic.taxonomy).
+# Matterport3D region categories the real-world generator draws (inherit_sg.ingest.synthetic.taxonomy).
 ROOM_SYNONYMS: dict[str, tuple[str, ...]] = {
     "bedroom": ("bedroom", "sleeping room"),
     "bathroom": ("bathroom", "washroom", "restroom"),
@@ -145,7 +145,7 @@ OBJECT_KINDS: dict[str, ObjectKind] = {
 
 # What each room type of the classic world contains, as functional groups (the areas):
 # group label -> members. The generator picks groups for a room and places each group
-# together. The real-world generator uses ingest.synthetic.room_contents instead.
+# together. The real-world generator uses inherit_sg.ingest.synthetic.room_contents instead.
 AREA_TEMPLATES: dict[str, dict[str, tuple[str, ...]]] = {
     "bedroom": {
         "sleeping area": ("bed", "nightstand", "nightstand", "table lamp", "book"),

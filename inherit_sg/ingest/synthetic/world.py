@@ -2,7 +2,7 @@
 
 Walls are boxes with real gaps for doors and holes for windows, floor slabs have
 stairwell openings, every storey has a ceiling, objects are built from the parts of
-:mod:`ingest.synthetic.shapes`. Walls, floors, ceilings and the ground outside are
+:mod:`inherit_sg.ingest.synthetic.shapes`. Walls, floors, ceilings and the ground outside are
 background (instance 0) and are painted per room.
 """
 
