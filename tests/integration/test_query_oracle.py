@@ -167,8 +167,13 @@ def test_map_changes_and_visual_verification(tmp_path: Path) -> None:
         store.upsert_nodes([replace(chair, attributes={}, description="a chair")])
         result = engine.query("the red chair")
         assert result.candidates[0]["id"] == "obj:c3"
-        assert result.answer_id != "obj:c3"
         assert any("rejected" in line and "looks blue" in line for line in result.trace)
+        # the other chairs have no picture, but the map measured them blue and black: the
+        # graph rejects them too, so no candidate passes and the best-ranked is answered
+        # unverified (before, an unchecked blue chair was answered)
+        assert any("obj:c1: rejected by the graph" in line for line in result.trace)
+        assert result.answer_id == "obj:c3" and result.answer is not None
+        assert result.answer["verified"] is False
         unverified = engine.query("the red chair", verify=False)
         assert unverified.answer_id == "obj:c3" and unverified.timings_ms["verify"] < 5
 

@@ -90,7 +90,7 @@ def test_written_depth_matches_the_geometry(rendered, world):
     k = make_intrinsics(96, 72)
     renderer = Renderer(world.world, world.lights, k)
     traj = world.trajectory(1)
-    # the boxes each object is drawn as (the file's boxes, adjusted by ingest.mp3d_drawn)
+    # the boxes each object is drawn as (the file's boxes, adjusted by inherit_sg.ingest.mp3d_drawn)
     parts = {o.instance_id: world.drawn[o.id].parts for o in world.scene.objects}
     checked = 0
     for index in range(0, len(reader), 25):

@@ -230,7 +230,7 @@ def test_conversations_round_trip_and_determinism(
 def test_same_output_whatever_the_hash_seed(tmp_path: Path) -> None:
     script = (
         "import json; from tests.fixtures_scenes import small_scene; "
-        "from ingest.synthetic.queries import generate_queries as g; "
+        "from inherit_sg.ingest.synthetic.queries import generate_queries as g; "
         "print(json.dumps([q.to_dict() for q in g(small_scene(), 4)]))"
     )
     root = Path(__file__).resolve().parents[2]
