@@ -6,7 +6,7 @@
   room re-segmentation and of a global refinement of the full floor.
 * Quality: houses with 1, 2 and 3 floors from tuned seeds and from held-out seeds,
   clean and noisy, at ``--size``: room precision / recall at IoU ≥ 0.5 (observed and
-  full-polygon modes, see :mod:`inherit_sg.eval.geometry`), floor count and per-frame
+  full-polygon modes, see :mod:`inherit_sg.benchmark.metrics.geometry`), floor count and per-frame
   floor accuracy, on the refined and the live room masks.
 
 Prints one line per number and writes ``bench/results/geometry.json`` (or ``--json``).
@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from inherit_sg.eval.geometry import combine, evaluate_stream
+from inherit_sg.benchmark.metrics.geometry import combine, evaluate_stream
 from inherit_sg.geometry import GeometricStream
 from inherit_sg.ingest.isg import IsgReader
 from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset

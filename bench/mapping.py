@@ -18,7 +18,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from inherit_sg.eval.mapping import evaluate_objects, room_correspondence
+from inherit_sg.benchmark.metrics.mapping import evaluate_objects, room_correspondence
 from inherit_sg.facade import build_map
 from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects

@@ -26,8 +26,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from inherit_sg.eval.mapping import labels_compatible, match_objects
-from inherit_sg.eval.retrieval import _box_distance
+from inherit_sg.benchmark.metrics.mapping import labels_compatible, match_objects
+from inherit_sg.benchmark.metrics.retrieval import _box_distance
 from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects
 from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import ObjectNode

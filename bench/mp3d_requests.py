@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from inherit_sg.eval.retrieval import GroundTruth, _box_distance, percentile
+from inherit_sg.benchmark.metrics.retrieval import GroundTruth, _box_distance, percentile
 from inherit_sg.ingest.synthetic.scene import ObjectGT, Scene
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -4,7 +4,7 @@ region of the ``.house`` file, region by region.
 The script renders ``../shared/data/real/mp3d/example_mp3d_scene.house`` into
 ``WORK/dataset`` and maps it into ``WORK/map`` when they are missing (both kept for the
 next run), then compares the map's room masks with the ten region polygons of the
-ground truth (:func:`inherit_sg.eval.mapping.match_rooms`):
+ground truth (:func:`inherit_sg.benchmark.metrics.mapping.match_rooms`):
 
 * overlap: the area (m²) of a region that a map room's mask covers, sampled on a 0.1 m
   grid; "of region" is that area over the part of the region that any map room covers
@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from inherit_sg.eval.mapping import RoomMatching, match_rooms
+from inherit_sg.benchmark.metrics.mapping import RoomMatching, match_rooms
 from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import FloorNode, RoomNode
 

@@ -5,7 +5,7 @@ development set (tests/data/dev_requests), the hand-written cases (tests/data/pa
 and the 500 real requests in ../shared/data/real when present; the first parse (loading spaCy,
 the vocabulary and the spelling dictionary) is reported apart.
 
-Accuracy (``--dev``): the development set judged by :mod:`inherit_sg.eval.parse`: targets,
+Accuracy (``--dev``): the development set judged by :mod:`inherit_sg.benchmark.metrics.parse`: targets,
 negations (recall, invented), crashes, each constraint kind's recall and targets per form;
 ``--misses`` lists the requests whose target or negations are wrong.
 
@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from inherit_sg.eval.parse import Report, evaluate, load_requests
+from inherit_sg.benchmark.metrics.parse import Report, evaluate, load_requests
 from inherit_sg.retrieval.rules import parse_uncached
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -29,9 +29,9 @@ from typing import Any
 
 import numpy as np
 
+from inherit_sg.benchmark.metrics.retrieval import Answer, evaluate, latency, summarise
 from inherit_sg.config import Config
 from inherit_sg.embed import get_text_embedder
-from inherit_sg.eval.retrieval import Answer, evaluate, latency, summarise
 from inherit_sg.exchange.scene_truth import scene_to_graph
 from inherit_sg.ingest.synthetic.generate import generate_house
 from inherit_sg.ingest.synthetic.queries import QueryGT, generate_queries

@@ -344,11 +344,10 @@ def import_into_new_map(
         return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
     if fmt == "scene":
         from inherit_sg.embed import get_text_embedder
-        from inherit_sg.exchange.scene_truth import scene_to_graph
-        from inherit_sg.ingest.synthetic.scene import Scene
+        from inherit_sg.exchange.scene_truth import scene_file_to_graph
         from inherit_sg.mapping.node_text import embed_nodes
 
-        graph = scene_to_graph(Scene.load(src))
+        graph = scene_file_to_graph(src)
         embedder = get_text_embedder(
             cfg.embedder.model, batch_size=cfg.embedder.batch_size, device=cfg.embedder.device
         )

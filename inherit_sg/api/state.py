@@ -13,15 +13,17 @@ import re
 import threading
 from collections import OrderedDict
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from starlette.requests import Request
 
 from inherit_sg.config import Config
 from inherit_sg.errors import InheritSGError, MapError, MapNotFoundError, NotFoundError
 from inherit_sg.facade import MapService
-from inherit_sg.mapping.live import FAILED, FINISHED, LiveSession
 from inherit_sg.retrieval.conversation import Conversation
+
+if TYPE_CHECKING:
+    from inherit_sg.mapping.live import LiveSession
 
 MAP_NAME = re.compile(r"^[A-Za-z0-9_.-]+$")
 MAX_CONVERSATIONS = 1000
@@ -140,7 +142,7 @@ class ServedMap:
         try:
             return live.finish()
         finally:
-            if live.state in (FINISHED, FAILED):
+            if live.ended:
                 self._end_live(live)
 
     def _end_live(self, live: LiveSession) -> None:

@@ -10,8 +10,8 @@ from typing import Any
 
 from inherit_sg.benchmark.accuracy import engine_answers, judge, warm_up
 from inherit_sg.benchmark.latency import mean_total_ms
+from inherit_sg.benchmark.metrics.retrieval import summarise
 from inherit_sg.config import Config
-from inherit_sg.eval.retrieval import summarise
 from inherit_sg.ingest.synthetic.queries import QueryGT
 from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.retrieval.engine import QueryEngine

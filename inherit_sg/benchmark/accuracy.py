@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from inherit_sg.eval.retrieval import Answer, Outcome, evaluate, summarise
+from inherit_sg.benchmark.metrics.retrieval import Answer, Outcome, evaluate, summarise
 from inherit_sg.ingest.synthetic.queries import QueryGT
 from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.retrieval.baseline import FlatBaseline
@@ -75,5 +75,5 @@ def compare(
 
 
 def accuracy_table(outcomes: dict[str, list[Outcome]]) -> dict[str, Any]:
-    """Summaries (:func:`inherit_sg.eval.retrieval.summarise`) per system."""
+    """Summaries (:func:`inherit_sg.benchmark.metrics.retrieval.summarise`) per system."""
     return {system: summarise(outs) for system, outs in outcomes.items()}

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import statistics
 
-from inherit_sg.eval.retrieval import Outcome, percentile
+from inherit_sg.benchmark.metrics.retrieval import Outcome, percentile
 
 STAGES = ("parse", "retrieve", "verify", "total")
 

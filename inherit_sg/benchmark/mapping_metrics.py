@@ -1,6 +1,6 @@
 """Mapping figures of a benchmark: speed and memory of a build, or what a map's recorded
 sessions say of the builds that made it, and object / room quality against the ground
-truth (:mod:`inherit_sg.eval.mapping`)."""
+truth (:mod:`inherit_sg.benchmark.metrics.mapping`)."""
 
 from __future__ import annotations
 
@@ -9,13 +9,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-from inherit_sg.config import Config
-from inherit_sg.eval.mapping import (
+from inherit_sg.benchmark.metrics.mapping import (
     RoomMatching,
     evaluate_objects,
     match_rooms,
     room_correspondence,
 )
+from inherit_sg.config import Config
 from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects
 from inherit_sg.ingest.synthetic.scene import Scene
 from inherit_sg.model import EdgeKind, FloorNode, RoomNode, Session
@@ -100,7 +100,7 @@ def quality(store: MapStore, dataset: Path, scene: Scene) -> dict[str, Any]:
 
 def room_scores(matching: RoomMatching) -> dict[str, Any]:
     """Room precision and recall by the one-to-one mutual-majority rule of
-    :class:`~inherit_sg.eval.mapping.RoomMatching`: a map room that merges several true
+    :class:`~inherit_sg.benchmark.metrics.mapping.RoomMatching`: a map room that merges several true
     rooms (an open-plan kitchen and living room found as one) or covers only part of a
     split one matches nothing."""
     return {

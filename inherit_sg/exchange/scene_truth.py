@@ -10,6 +10,7 @@ never used by mapping: a built map comes from pixels only.
 from __future__ import annotations
 
 from collections import defaultdict
+from pathlib import Path
 
 import numpy as np
 
@@ -161,3 +162,8 @@ def scene_to_graph(scene: Scene) -> SceneGraph:
     for rel in infer_relations(objects, room_of, neighbours):
         graph.add_edge(rel.to_edge())
     return graph
+
+
+def scene_file_to_graph(path: str | Path) -> SceneGraph:
+    """:func:`scene_to_graph` of a ``scene.json`` file (or a folder holding one)."""
+    return scene_to_graph(Scene.load(path))

@@ -247,6 +247,11 @@ class LiveSession:
             log.warning("live session %s: could not record the failure: %s", self.id, exc)
 
     # ------------------------------------------------------------------ status
+    @property
+    def ended(self) -> bool:
+        """Whether the session finished or failed (it takes no more frames)."""
+        return self.state in (FINISHED, FAILED)
+
     def status(self) -> dict[str, Any]:
         """Counters of the session (JSON-able)."""
         with self._lock:

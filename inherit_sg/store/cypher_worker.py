@@ -22,8 +22,11 @@ import contextlib
 import logging
 import multiprocessing
 import signal
+import sys
 import threading
 import time
+import types
+from collections.abc import Iterator
 from multiprocessing.connection import Connection
 from pathlib import Path
 from typing import Any
@@ -44,6 +47,24 @@ log = logging.getLogger(__name__)
 GRACE_S = 2.0
 # Seconds a new child may take to import Kuzu and open the database.
 START_TIMEOUT_S = 60.0
+
+
+_START_LOCK = threading.Lock()
+
+
+@contextlib.contextmanager
+def _caller_script_hidden() -> Iterator[None]:
+    """While a ``spawn`` child starts, show it no ``__main__`` to import: ``spawn`` runs
+    the caller's script again in the child (as ``__mp_main__``), and a plain script
+    without an ``if __name__ == "__main__"`` guard would then build its maps again, or
+    fail to start the worker at all. The child needs nothing from the script."""
+    main = sys.modules.get("__main__")
+    sys.modules["__main__"] = types.ModuleType("__main__")
+    try:
+        yield
+    finally:
+        if main is not None:
+            sys.modules["__main__"] = main
 
 
 def _serve(file: str, conn: Connection) -> None:
@@ -176,7 +197,8 @@ class CypherWorker:
         proc = ctx.Process(
             target=_serve, args=(str(self.file), child), daemon=True, name="cypher-worker"
         )
-        proc.start()
+        with _START_LOCK, _caller_script_hidden():
+            proc.start()
         child.close()
         self._proc, self._conn = proc, parent
         deadline = time.monotonic() + START_TIMEOUT_S

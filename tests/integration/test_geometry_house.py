@@ -12,7 +12,7 @@ from inherit_sg.model import EdgeKind, RoomNode, SceneGraph
 
 generate = pytest.importorskip("inherit_sg.ingest.synthetic.generate")
 isg = pytest.importorskip("inherit_sg.ingest.isg")
-geo_eval = pytest.importorskip("inherit_sg.eval.geometry")
+geo_eval = pytest.importorskip("inherit_sg.benchmark.metrics.geometry")
 
 
 @pytest.fixture(scope="module")

@@ -15,7 +15,7 @@ import cv2
 import numpy as np
 import pytest
 
-from inherit_sg.eval.mapping import evaluate_objects
+from inherit_sg.benchmark.metrics.mapping import evaluate_objects
 from inherit_sg.facade import build_map
 from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.ingest.synthetic.ground_truth_files import seen_objects

@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from inherit_sg.benchmark.metrics.retrieval import evaluate, summarise
 from inherit_sg.errors import QueryTextError
-from inherit_sg.eval.retrieval import evaluate, summarise
 from inherit_sg.ingest.synthetic.generate import generate_house
 from inherit_sg.ingest.synthetic.queries import generate_queries
 from inherit_sg.model import BBox3D, Edge, EdgeKind, ObjectNode

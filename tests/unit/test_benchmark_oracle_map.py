@@ -14,11 +14,11 @@ import pytest
 from inherit_sg.benchmark.ablations import ABLATIONS, FULL, run_ablations, with_change
 from inherit_sg.benchmark.accuracy import accuracy_table, compare
 from inherit_sg.benchmark.mapping_metrics import from_sessions, quality, room_scores
+from inherit_sg.benchmark.metrics.mapping import RoomMatching
 from inherit_sg.benchmark.storage import storage_breakdown
 from inherit_sg.config import Config
 from inherit_sg.embed import get_text_embedder
 from inherit_sg.errors import ConfigError
-from inherit_sg.eval.mapping import RoomMatching
 from inherit_sg.exchange.scene_truth import scene_to_graph
 from inherit_sg.ingest.synthetic.queries import generate_queries
 from inherit_sg.ingest.synthetic.scene import Scene

@@ -8,9 +8,9 @@ from typing import Any
 
 from inherit_sg.benchmark.accuracy import accuracy_table
 from inherit_sg.benchmark.latency import stage_latency
+from inherit_sg.benchmark.metrics.retrieval import Outcome, summarise
 from inherit_sg.benchmark.page import render_page
 from inherit_sg.benchmark.plots import plot_accuracy, plot_latency_scale, plot_storage
-from inherit_sg.eval.retrieval import Outcome, summarise
 
 PNG_MAGIC = b"\x89PNG"
 

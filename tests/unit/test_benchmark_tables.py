@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 from inherit_sg.benchmark.latency import mean_total_ms, stage_latency
+from inherit_sg.benchmark.metrics.retrieval import Outcome
 from inherit_sg.benchmark.tables import num, pct, ratio_pct, size, table
-from inherit_sg.eval.retrieval import Outcome
 
 
 def test_numbers_and_sizes_format_like_the_paper_tables() -> None:

@@ -1,4 +1,4 @@
-"""Room precision and recall against every true room (inherit_sg.eval.mapping): overlap
+"""Room precision and recall against every true room (inherit_sg.benchmark.metrics.mapping): overlap
 areas, the mutual-majority matching and the most-overlap correspondence."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from inherit_sg.eval.mapping import match_rooms, room_correspondence, room_overlaps
+from inherit_sg.benchmark.metrics.mapping import match_rooms, room_correspondence, room_overlaps
 from inherit_sg.ingest.synthetic.scene import FloorGT, RoomGT, Scene
 from inherit_sg.model import RoomMask, RoomNode
 

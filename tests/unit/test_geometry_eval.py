@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from inherit_sg.eval.geometry import (
+from inherit_sg.benchmark.metrics.geometry import (
     combine,
     floor_metrics,
     match_masks,

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from inherit_sg.eval.parse import Report, evaluate, load_requests
+from inherit_sg.benchmark.metrics.parse import Report, evaluate, load_requests
 from inherit_sg.retrieval.rules import parse_uncached
 
 DEV = Path(__file__).resolve().parents[1] / "data" / "dev_requests"

@@ -8,8 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from inherit_sg.errors import InputError
-from inherit_sg.eval.retrieval import (
+from inherit_sg.benchmark.metrics.retrieval import (
     GroundTruth,
     Outcome,
     latency,
@@ -17,6 +16,7 @@ from inherit_sg.eval.retrieval import (
     percentile,
     summarise,
 )
+from inherit_sg.errors import InputError
 from inherit_sg.ingest.synthetic.queries import QueryGT
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.conversation import Conversation

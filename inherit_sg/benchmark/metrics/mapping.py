@@ -215,7 +215,7 @@ def _mask_hits(mask: RoomMask, pts: np.ndarray) -> np.ndarray:
 
 def _mask_overlap(mask: RoomMask, polygon: Sequence[Sequence[float]]) -> float:
     """Area (m²) of the mask's covered cells whose centres lie inside ``polygon``."""
-    from inherit_sg.eval.geometry import rasterize_polygon
+    from inherit_sg.benchmark.metrics.geometry import rasterize_polygon
 
     inside = rasterize_polygon(
         polygon, (mask.origin_x, mask.origin_y), mask.resolution, mask.cells.shape

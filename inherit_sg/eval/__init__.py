@@ -1,2 +1,0 @@
-"""Evaluation against simulator ground truth (used by tests and benchmarks only; never by
-mapping or retrieval)."""
