@@ -64,10 +64,7 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
     def readyz(request: Request) -> JSONResponse:
         """Readiness: 200 when every served map is open, 503 naming the ones that are not."""
         registry: Registry = request.app.state.registry
-        states = {
-            name: "ok" if s.service is not None else (s.error.message if s.error else "closed")
-            for name, s in registry.maps.items()
-        }
+        states = {name: s.status for name, s in registry.maps.items()}
         ready = all(v == "ok" for v in states.values())
         body = HealthResponse(status="ok" if ready else "unavailable", maps=states)
         return JSONResponse(body.model_dump(), status_code=200 if ready else 503)

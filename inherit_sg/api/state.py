@@ -83,6 +83,13 @@ class ServedMap:
         except InheritSGError as exc:
             self.error = exc
 
+    @property
+    def status(self) -> str:
+        """'ok' when the map is open, else the reason it is not."""
+        if self.service is not None:
+            return "ok"
+        return self.error.message if self.error is not None else "closed"
+
     def require(self) -> MapService:
         """The open service, or the error that kept the map from opening."""
         if self.service is None:

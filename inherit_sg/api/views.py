@@ -50,15 +50,7 @@ def install(app: FastAPI) -> None:
         """The served maps, by name, with 'ok' or the reason a map did not open."""
         registry: Registry = request.app.state.registry
         return MapList(
-            maps=[
-                MapEntry(
-                    name=name,
-                    status="ok"
-                    if s.service is not None
-                    else (s.error.message if s.error else "closed"),
-                )
-                for name, s in registry.maps.items()
-            ]
+            maps=[MapEntry(name=name, status=s.status) for name, s in registry.maps.items()]
         )
 
     @app.get("/v1/maps/{map}/floors")

@@ -26,7 +26,6 @@ from inherit_sg.ingest.mp3d_walls import WALL_T, WallSpan
 from inherit_sg.ingest.synthetic.grid import Grid, components
 from inherit_sg.ingest.synthetic.planner import BODY, RADIUS, FloorMap
 from inherit_sg.ingest.synthetic.trajectory import (
-    LOOK_FRAMES,
     Trajectory,
     _Walker,
     _wrap,
@@ -80,7 +79,10 @@ def free_space(space: LevelSpace, walls: list[WallSpan]) -> np.ndarray:
 
 
 class _HouseWalker(_Walker):
-    """The synthetic walker's turning, stepping and looking, over MP3D levels."""
+    """The synthetic walker's turning, stepping and looking, over MP3D levels; every
+    other look-around frame tilts up (:data:`LOOK_UP`)."""
+
+    look_up = LOOK_UP
 
     def __init__(self, rng: np.random.Generator) -> None:
         # _Walker's constructor takes a generated plan, used only by its emit().
@@ -102,17 +104,6 @@ class _HouseWalker(_Walker):
         self.traj.floors.append(self.floor)
         self.traj.rooms.append(self.space.room_at(self.x, self.y))
         self.traj.activity.append(activity)
-
-    def look_around(self) -> None:
-        """Turn once in place; every other frame looks up (:data:`LOOK_UP`), as a person
-        scanning a room tilts the camera to take in what hangs on the walls and ceiling."""
-        direction = 1.0 if self.rng.random() < 0.5 else -1.0
-        level = self.pitch
-        for k in range(LOOK_FRAMES):
-            self.yaw = _wrap(self.yaw + direction * 2 * math.pi / LOOK_FRAMES)
-            self.pitch = -LOOK_UP if k % 2 else level
-            self.emit("look")
-        self.pitch = level
 
 
 def _viewpoint(fm: LevelMap, room: np.ndarray, reach: np.ndarray) -> tuple[tuple[int, int], bool]:

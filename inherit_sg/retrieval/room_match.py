@@ -220,18 +220,25 @@ def match_rooms(
     named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
     # "den" names a family room and a TV room alike (``also`` in rooms.toml).
     wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
+    labelled: set[str] = set()  # rooms whose label names the type asked for
     for rid in sorted(snap.rooms):
         types = room_type_sims(rid, snap, negated=negated)
-        exact = [_by_type(rid, t, types) for t in dict.fromkeys(wanted) if t in types]
+        exact = [
+            (_by_type(rid, t, types), types[t][1].startswith("its label"))
+            for t in dict.fromkeys(wanted)
+            if t in types
+        ]
         if exact:
-            out[rid] = max(exact, key=lambda hit: hit[0])
+            out[rid], by_label = max(exact, key=lambda hit: hit[0][0])
+            if by_label:
+                labelled.add(rid)
             continue
         found = _by_alias(rid, rtype, named, types, with_related=not negated)
         if found is not None and found[0] >= MIN_MATCH:
             out[rid] = found
     qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
     if not negated and qualifier is None and not beside:
-        _prefer_labelled(out)  # (a qualifier or a neighbour says which room instead)
+        _prefer_labelled(out, labelled)  # (a qualifier or a neighbour says which instead)
     if not out:
         _by_embedding(out, words, snap, sim)
     if qualifier is not None and rtype is not None:
@@ -243,12 +250,11 @@ def match_rooms(
     return out
 
 
-def _prefer_labelled(out: Matches) -> None:
-    """When some room's label names the type asked for, rooms that only may be one
-    (an alternative, an alias's related type) keep :data:`UNLABELLED_SHARE` of their
-    similarity: "the family room" is the room the map calls one, before the living room
-    that might also be read as one. In place."""
-    labelled = {rid for rid, (_, why) in out.items() if "(label:" in why}
+def _prefer_labelled(out: Matches, labelled: set[str]) -> None:
+    """When some rooms' labels name the type asked for (``labelled``), the rooms that
+    only may be one (an alternative, an alias's related type) keep
+    :data:`UNLABELLED_SHARE` of their similarity: "the family room" is the room the map
+    calls one, before the living room that might also be read as one. In place."""
     if not labelled:
         return
     for rid, (value, why) in list(out.items()):

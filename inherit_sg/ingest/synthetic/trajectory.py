@@ -95,11 +95,19 @@ class _Walker:
             self.x, self.y = x, y
             self.emit("walk")
 
+    # Pitch above the horizon of every other look-around frame; None keeps the camera
+    # level (the MP3D walker tilts up to take in what hangs high on walls and ceilings).
+    look_up: float | None = None
+
     def look_around(self) -> None:
         direction = 1.0 if self.rng.random() < 0.5 else -1.0
-        for _ in range(LOOK_FRAMES):
+        level = self.pitch
+        for k in range(LOOK_FRAMES):
             self.yaw = _wrap(self.yaw + direction * 2 * math.pi / LOOK_FRAMES)
+            if self.look_up is not None:
+                self.pitch = -self.look_up if k % 2 else level
             self.emit("look")
+        self.pitch = level
 
     def climb(self, stairs: StairPlan) -> None:
         heading = math.pi / 2 if stairs.direction > 0 else -math.pi / 2

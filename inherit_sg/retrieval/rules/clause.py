@@ -73,12 +73,14 @@ _BESIDE = frozenset({"next to", "by", "near", "beside", "at", "in front of", "cl
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
+# "before I head out …": a time clause, context rather than the target.
+_TIME_WORDS = frozenset({"before", "after", "once", "until"})
+_PEOPLE = frozenset({"i", "we", "you", "they", "he", "she"})
+# "counting from the curtains, …": the landmark ordinals are counted from.
+_COUNTING = frozenset({"counting", "starting", "going", "numbering", "beginning", "count"})
 # Viewpoint verbs that take the place as their object ("enter the kitchen, …"); the others
 # name a place through a preposition ("stand at", "come through"), and with an object they
 # are errands ("move the ottoman", "get the towel").
-_TIME_WORDS = frozenset({"before", "after", "once", "until"})
-_PEOPLE = frozenset({"i", "we", "you", "they", "he", "she"})
-_COUNTING = frozenset({"counting", "starting", "going", "numbering", "beginning", "count"})
 _TRANSITIVE_VIEW = frozenset({"enter", "pass", "reach", "climb", "approach"})
 
 

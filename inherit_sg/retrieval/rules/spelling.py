@@ -5,8 +5,9 @@ its bundled English frequency dictionary plus every vocabulary word).
 
 Only clear cases are corrected: one edit (insert, delete, substitute or swap) for words
 of five letters or more, a swap of letters for shorter ones ("teh" → "the", "fidn" →
-"find"), and one edit that gives a vocabulary word for four-letter ones ("towl" → "towel"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay as
-written. The dictionary is loaded on the first word that needs it (about 0.5 s), so
+"find"), and one edit that gives a vocabulary word for four-letter ones ("towl" →
+"towel"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay
+as written. The dictionary is loaded on the first word that needs it (about 0.5 s), so
 requests without typos never pay for it. Apostrophe-less contractions ("thats", "dont")
 are restored from ``lexicon.toml``.
 """
