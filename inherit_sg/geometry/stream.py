@@ -68,6 +68,11 @@ def _locked(method: _F) -> _F:
     return cast(_F, wrapper)
 
 
+# An object whose middle lies this far below a floor's estimated surface still stands on
+# it (depth noise on thin things such as rugs); it is less than a floor slab is thick.
+FLOOR_BAND_M = 0.1
+
+
 class GeometricStream:
     """Fast half of the dual-stream construction (floors, rooms, doors, keyframes).
 
@@ -356,11 +361,16 @@ class GeometricStream:
         return room_node_id(rid) if rid else None
 
     def floor_of_height(self, z: float) -> str | None:
-        """The floor whose height band contains world height ``z`` (objects, doors)."""
+        """The floor whose height band contains world height ``z`` (an object's middle):
+        the highest floor whose surface lies at most :data:`FLOOR_BAND_M` above ``z``.
+
+        An object's middle, not its bottom: a light hung from a ceiling sits a slab's
+        thickness below the next floor's surface, its middle lower still, while even a rug
+        on that floor has its middle at or above the surface."""
         floors = self.tracker.ordered()
         if not floors:
             return None
-        below = [f for f in floors if f.floor_z - 0.3 <= z]
+        below = [f for f in floors if f.floor_z - FLOOR_BAND_M <= z]
         return (below[-1] if below else floors[0]).id
 
     @_locked

@@ -294,7 +294,8 @@ class Mapper:
             # floors from heights: keyframes taken on the stairs may carry the floor
             # the camera was leaving
             for tracked in self.objects.objects.values():
-                floor = self.geometry.floor_of_height(tracked.node.bbox.min[2] + 0.05)
+                box = tracked.node.bbox
+                floor = self.geometry.floor_of_height((box.min[2] + box.max[2]) / 2)
                 if floor is not None and floor != tracked.floor_id:
                     tracked.floor_id = tracked.node.floor_id = floor
                     tracked.dirty = True

@@ -120,10 +120,14 @@ def _size_penalty(area_m2: float | None, typical: tuple[float, float] | None) ->
 
 
 def room_type_scores(
-    labels: Sequence[str], area_m2: float | None = None, shape: RoomShape | None = None
+    labels: Sequence[str],
+    area_m2: float | None = None,
+    shape: RoomShape | None = None,
+    off_entrance: bool = False,
 ) -> dict[str, float]:
     """The score of every room type (file order) for a room holding objects labelled
-    ``labels``, of floor area ``area_m2`` (else the shape's) and ``shape``."""
+    ``labels``, of floor area ``area_m2`` (else the shape's) and ``shape``;
+    ``off_entrance``: the room's storey has no exterior door while another one has."""
     every = [" ".join(lab.lower().split()) for lab in labels if lab and lab.strip()]
     raw = set(every)
     chains = list(dict.fromkeys(_kind_chain(lab) for lab in sorted(raw)))
@@ -143,6 +147,7 @@ def room_type_scores(
             - _size_penalty(area, rtype.area)
             + rtype.narrow * narrowness
             + (rtype.bare if bare else 0.0)
+            + (rtype.off_entrance if off_entrance else 0.0)
         )
     return scores
 
@@ -164,13 +169,17 @@ def type_evidence(labels: Sequence[str]) -> dict[str, float]:
 
 
 def infer_room_types(
-    labels: Sequence[str], area_m2: float | None = None, shape: RoomShape | None = None
+    labels: Sequence[str],
+    area_m2: float | None = None,
+    shape: RoomShape | None = None,
+    off_entrance: bool = False,
 ) -> RoomTypes:
     """The room's type as a ranked distribution: ``[(type, probability), …]`` over every
     room type, best first (ties in file order), probabilities summing to 1. A room with
     no evidence spreads its probability, with "other room" first, or "hallway" when it is
-    long and narrow or holds only fixtures."""
-    scores = room_type_scores(labels, area_m2, shape)
+    long and narrow or holds only fixtures. ``off_entrance``: the room's storey has no
+    exterior door while another storey has one (see ``off_entrance`` in rooms.toml)."""
+    scores = room_type_scores(labels, area_m2, shape, off_entrance)
     names = list(scores)
     values = np.array([scores[n] for n in names], dtype=float) / TEMPERATURE
     weights = np.exp(values - values.max())

@@ -125,12 +125,19 @@ class HierarchyBuilder:
     @staticmethod
     def _label_rooms(rooms: dict[str, RoomNode], by_room: dict[str, list[ObjectNode]]) -> None:
         """Infer every room's type distribution from its objects' labels and its mask's
-        size and shape, apply the one-per-storey prior floor by floor
+        size and shape (and whether its storey holds the building's entrance, an
+        exterior door, while another does), apply the one-per-storey prior floor by floor
         (:func:`separate_single_types`); each label is its room's best type."""
         floors: dict[str | None, dict[str, list[tuple[str, float]]]] = {}
+        entrances = {
+            room.floor_id
+            for room_id, room in rooms.items()
+            if any(o.label == EXTERIOR_DOOR for o in by_room.get(room_id, []))
+        }
         for room_id, room in rooms.items():
             labels = [o.label for o in by_room.get(room_id, [])]
-            types = infer_room_types(labels, shape=room_shape(room.mask))
+            off_entrance = bool(entrances) and room.floor_id not in entrances
+            types = infer_room_types(labels, shape=room_shape(room.mask), off_entrance=off_entrance)
             floors.setdefault(room.floor_id, {})[room_id] = types
         separated = separate_single_types(list(floors.values()))
         for room_id, room in rooms.items():

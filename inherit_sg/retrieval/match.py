@@ -52,6 +52,14 @@ FUNCTION_MIN = 0.6
 FUNCTION_SUBKIND = 0.05
 # Kinds a function phrase merely resembles count at most this much.
 FUNCTION_SEMANTIC_MAX = 0.5
+# A function the vocabulary does not know: the closest map label counts this much, those
+# less than OPEN_FUNCTION_MARGIN (cosine) behind it count less, and nothing counts when
+# the closest stays below OPEN_FUNCTION_MIN_COS (measured with the default MiniLM
+# embedder: purpose phrases reach 0.35–0.55 with the label that serves them, unrelated
+# labels stay below 0.3).
+OPEN_FUNCTION_MAX = 0.7
+OPEN_FUNCTION_MARGIN = 0.06
+OPEN_FUNCTION_MIN_COS = 0.3
 # Labels that only resemble the requested one count at most this much.
 LABEL_SEMANTIC_MAX = 0.8
 # A kind of the requested thing by its name ("dining table" for "table").
@@ -190,10 +198,38 @@ def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimi
             at, kind = min(general)
             value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * at) - FUNCTION_SUBKIND
             out[label] = (value, f"a {label} is a {kind}, which serves '{con.function}'")
+    if not con.labels:
+        _open_function(out, con, labels, sim)
+        return out
     _semantic(
         out, [con.function], labels, labels, sim, FUNCTION_SEMANTIC_MAX, TEXT_COS_LO, TEXT_COS_HI
     )
     return out
+
+
+def _open_function(
+    out: Matches, con: FunctionConstraint, labels: list[str], sim: PhraseSimilarity
+) -> None:
+    """A function the vocabulary does not know ("weigh myself on", "make a phone call"):
+    the map labels whose names come closest in meaning to the request's own words.
+
+    A purpose phrase resembles the thing that serves it only loosely (cos 0.3–0.5 for
+    "wrap myself in" and "a blanket"), so the grading is relative: the closest label
+    counts :data:`OPEN_FUNCTION_MAX`, labels within :data:`OPEN_FUNCTION_MARGIN` of it
+    count less the further behind they are, and nothing counts when even the closest
+    stays below :data:`OPEN_FUNCTION_MIN_COS`."""
+    phrases = [p for p in dict.fromkeys([con.text.strip().lower(), con.function]) if p]
+    if not phrases or not labels:
+        return
+    cos = sim.matrix(phrases, [f"a {label}" for label in labels]).max(axis=0)
+    best = float(cos.max())
+    if best < OPEN_FUNCTION_MIN_COS:
+        return
+    values = graded(cos, best - OPEN_FUNCTION_MARGIN, best) * OPEN_FUNCTION_MAX
+    for label, value, c in zip(labels, values, cos, strict=True):
+        if value >= MIN_MATCH and label not in out:
+            why = f"'{label}' comes closest to '{phrases[0]}' (text embedding, cos {c:.2f})"
+            out[label] = (float(value), why)
 
 
 def _rooms(

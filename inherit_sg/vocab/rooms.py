@@ -30,6 +30,7 @@ _FIELDS = frozenset(
         "area",
         "narrow",
         "bare",
+        "off_entrance",
         "related",
         "evidence",
         "single",
@@ -46,7 +47,9 @@ class RoomType:
     ``prior`` is the type's relative frequency in (0, 1]; ``base`` its score before any
     evidence; ``area`` its typical floor area range in m² (None: no size cue);
     ``narrow`` and ``bare`` the scores added when a room is long and narrow or holds
-    only fixtures; ``related`` the types people name it by, with a similarity;
+    only fixtures; ``off_entrance`` the score added on a storey without the building's
+    entrance (an exterior door) when another storey has one; ``related`` the types
+    people name it by, with a similarity;
     ``single`` whether a storey seldom has two rooms of the type; ``sets`` maps object
     kinds to ``(count, weight)``: at least ``count`` objects of the kind (or of kinds of
     it) together say ``weight`` more for the type (a set of chairs around a table);
@@ -62,6 +65,7 @@ class RoomType:
     area: tuple[float, float] | None = None
     narrow: float = 0.0
     bare: float = 0.0
+    off_entrance: float = 0.0
     related: dict[str, float] = field(default_factory=dict)
     single: bool = False
     sets: dict[str, tuple[int, float]] = field(default_factory=dict)
@@ -174,6 +178,7 @@ def _room_type(name: str, entry: Any) -> RoomType:
         area=_area(entry, where),
         narrow=_number(entry, "narrow", where, 0.0),
         bare=_number(entry, "bare", where, 0.0),
+        off_entrance=_number(entry, "off_entrance", where, 0.0),
         related=_related(entry, where),
         single=_flag(entry, "single", where),
         sets=_sets(entry, where),

@@ -18,7 +18,7 @@ from inherit_sg.geometry import (
     RoomsUpdated,
 )
 from inherit_sg.geometry.events import GeometryEvent
-from inherit_sg.model import EdgeKind, FloorNode, RoomNode, SceneGraph
+from inherit_sg.model import EdgeKind, FloorNode, NodeId, RoomNode, SceneGraph
 from tests.unit.geometry_fixtures import look_pose, make_frame, two_room_walk, two_rooms
 
 
@@ -199,3 +199,23 @@ def test_id_offsets_and_calls_from_a_worker_thread() -> None:
     assert not errors
     assert [f.id for f in stream.floors()] == ["floor:3"]
     assert {r.id for r in stream.refine()} == {"room:40", "room:41"}
+
+
+def test_an_object_belongs_to_the_floor_its_middle_stands_on() -> None:
+    """A light hung from the ground floor's ceiling, just below the upper floor's
+    surface, stays on the ground floor; a rug on the upper floor, with its middle a little
+    below that floor's estimated surface, is on the upper floor."""
+    from inherit_sg.geometry.floors import FloorState
+    from inherit_sg.geometry.stream import FLOOR_BAND_M
+
+    stream = GeometricStream(enqueue_keyframes=False)
+    ground = FloorState(NodeId("floor:0"), camera_z=1.4, level=0)
+    upper = FloorState(NodeId("floor:1"), camera_z=4.4, level=1)
+    ground.estimates.append(0.0)
+    upper.estimates.append(3.0)
+    stream.tracker.floors = {ground.id: ground, upper.id: upper}
+    ceiling_light_middle = 2.8 - 0.07
+    assert stream.floor_of_height(ceiling_light_middle) == "floor:0"
+    assert stream.floor_of_height(3.0 - FLOOR_BAND_M / 2) == "floor:1"
+    assert stream.floor_of_height(0.5) == "floor:0"
+    assert stream.floor_of_height(-0.2) == "floor:0"  # below every floor: the lowest

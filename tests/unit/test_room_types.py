@@ -176,3 +176,14 @@ def test_a_discounted_room_moves_on_to_its_next_free_type() -> None:
     assert labels["k1"] == "kitchen"
     assert labels["k2"] == "dining room"  # the stronger of the two dining claims
     assert labels["k3"] == "bar"  # kitchen and dining room are both held
+
+
+def test_an_entryway_is_where_the_building_is_entered() -> None:
+    """A hall with a bench is an entryway on the storey with the exterior door, a
+    hallway on a storey without one (when another storey has it)."""
+    hall = RoomShape(area_m2=8.0, width_m=2.2, elongation=1.6)
+    labels = ["bench", "plant", "thermostat", "painting", "light switch", "window", "door"]
+    assert infer_room_types(labels, shape=hall)[0][0] == "entryway"
+    upstairs = infer_room_types(labels, shape=hall, off_entrance=True)
+    assert upstairs[0][0] != "entryway"
+    assert _p(upstairs, "entryway") < _p(infer_room_types(labels, shape=hall), "entryway")

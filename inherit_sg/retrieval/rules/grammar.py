@@ -533,6 +533,22 @@ class Grammar(Cursor):
             if cand is not None and cand.kind in (GENERIC, VAGUE, ONE):
                 np.constraints += cand.constraints  # "a place to find something to read"
                 np.places += cand.places
+            elif (
+                cand is not None
+                and cand.kind == OBJECT
+                and cand.labels
+                and np.kind
+                in (
+                    GENERIC,
+                    VAGUE,
+                )
+            ):
+                # "a spot to make a phone call", "somewhere to find the remote": the thing
+                # the light verb takes is what serves
+                np.kind, np.labels, np.words = OBJECT, cand.labels, cand.words
+                np.known = cand.known
+                np.constraints += cand.constraints
+                np.places += cand.places
             return True
         if tok.has("to", "prep") and tok.text in ("to", "into") and _leads_somewhere(np):
             return self._leads_to(np)

@@ -81,8 +81,12 @@ def is_verb_here(g: Grammar) -> bool:
     return False
 
 
-def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
-    """Parse a verb phrase at the cursor → function constraints and a head candidate."""
+def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | None]:
+    """Parse a verb phrase at the cursor → function constraints and a head candidate.
+
+    ``purpose``: the phrase says what something is for ("something to weigh myself on",
+    "a spot to make a phone call"); a verb the vocabulary does not know, even with a named
+    object, then gives a function in the request's own words rather than a head."""
     start = g.i
     tok = g.advance()
     verb = verb_reading(tok) or tok.text
@@ -159,7 +163,7 @@ def parse_vp(g: Grammar) -> tuple[list[Constraint], NP | None]:
         # but "take a shower" is the verb's own sense (wash)
         g.notes.append(f"'{tok.text} {obj.noun}': the object is the target")
         return [], obj
-    if sense is None and (verb in lx.light_verbs or named):
+    if sense is None and (verb in lx.light_verbs or (named and not purpose)):
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
@@ -324,8 +328,12 @@ def _objects(g: Grammar, landmark: bool = True) -> NP | None:
 def parse_purpose(g: Grammar) -> tuple[list[Constraint], NP | None]:
     """After "to" / "for" / "while": a verb phrase, or a purpose noun ("for a meeting")."""
     tok = g.peek()
-    if tok is not None and verb_reading(tok) is not None and not g.at("det", k=-1):
-        return parse_vp(g)
+    # a verb the vocabulary knows, or any other verb in its base form
+    verb = tok is not None and (
+        verb_reading(tok) is not None or (tok.has("overb") and tok.tag == "VB")
+    )
+    if verb and not g.at("det", k=-1):
+        return parse_vp(g, purpose=True)
     if not g.np_start():
         return [], None
     snap = g.state()

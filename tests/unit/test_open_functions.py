@@ -1,0 +1,57 @@
+"""A purpose the function vocabulary does not know ("something to weigh myself on") is
+kept in the request's own words and matched to the map labels closest in meaning, with
+the real text embedder; the thing a light verb takes in a purpose phrase ("a spot to
+make a phone call") is what the request seeks."""
+
+from __future__ import annotations
+
+from inherit_sg.embed import get_text_embedder
+from inherit_sg.retrieval import parse_rules
+from inherit_sg.retrieval.constraints import FunctionConstraint
+from inherit_sg.retrieval.match import OPEN_FUNCTION_MAX, resolve_matches
+from inherit_sg.retrieval.similarity import PhraseSimilarity
+from tests.unit.retrieval_fixtures import floor_snapshot
+
+LABELS = ["scale", "blanket", "sofa", "stairs", "painting", "window", "toilet", "sink", "tv"]
+
+
+def _open_function(text: str) -> FunctionConstraint:
+    parsed = parse_rules(text)
+    found = [c for c in parsed.constraints if isinstance(c, FunctionConstraint)]
+    assert len(found) == 1, parsed
+    assert found[0].labels == ()  # not in the vocabulary: no kinds listed
+    return found[0]
+
+
+def _matches(con: FunctionConstraint) -> dict[str, float]:
+    snap = floor_snapshot([(f"o{k}", lab, 2.0 * k, 0.0, None) for k, lab in enumerate(LABELS)])
+    found = resolve_matches(con, "object", snap, PhraseSimilarity(get_text_embedder()))
+    assert found is not None
+    return {label: value for label, (value, _) in found.items()}
+
+
+def test_an_unknown_purpose_is_kept_in_the_requests_words() -> None:
+    con = _open_function("Could you find me something to weigh myself on?")
+    assert "weigh" in con.function
+    assert parse_rules("Could you find me something to weigh myself on?").target.any
+
+
+def test_an_unknown_purpose_matches_the_closest_labels() -> None:
+    weigh = _matches(_open_function("Could you find me something to weigh myself on?"))
+    assert max(weigh, key=weigh.__getitem__) == "scale"
+    assert weigh["scale"] == OPEN_FUNCTION_MAX
+    wrap = _matches(_open_function("I need something to wrap myself in"))
+    assert max(wrap, key=wrap.__getitem__) == "blanket"
+    # labels far behind the closest one do not count at all
+    assert "stairs" not in weigh and "painting" not in wrap
+
+
+def test_a_purpose_unlike_every_label_matches_nothing() -> None:
+    con = FunctionConstraint(function="xqzt", text="xqzt")
+    assert _matches(con) == {}
+
+
+def test_the_thing_a_light_verb_takes_in_a_purpose_phrase_is_sought() -> None:
+    parsed = parse_rules("What's a good spot to make a phone call upstairs?")
+    assert parsed.target.labels == ("phone",)
+    assert parse_rules("somewhere to find the remote").target.labels == ("remote",)
