@@ -133,6 +133,14 @@ def generate(
     workers: WorkersOption = None,
     max_frames: MaxFramesOption = None,
     shadows: ShadowsOption = False,
+    close_looks: Annotated[
+        bool,
+        typer.Option(
+            "--close-looks/--no-close-looks",
+            help="Besides a look-around in every room, glance at the ceiling and step up "
+            "to the walls and furniture seen only from afar (about twice the frames).",
+        ),
+    ] = True,
     force: ForceOption = False,
     as_json: JsonOption = False,
 ) -> None:
@@ -157,6 +165,7 @@ def generate(
             workers=workers,
             max_frames=max_frames,
             shadows=shadows,
+            close_looks=close_looks,
         ),
     )
     _report(summary, as_json)

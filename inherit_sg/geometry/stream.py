@@ -71,6 +71,9 @@ def _locked(method: _F) -> _F:
 # An object whose middle lies this far below a floor's estimated surface still stands on
 # it (depth noise on thin things such as rugs); it is less than a floor slab is thick.
 FLOOR_BAND_M = 0.1
+# An object reaching this far below its floor's surface rises from the floor below
+# (stairs); less is depth noise at the foot of things standing on the floor.
+RISES_FROM_M = 0.3
 
 
 class GeometricStream:
@@ -372,6 +375,21 @@ class GeometricStream:
             return None
         below = [f for f in floors if f.floor_z - FLOOR_BAND_M <= z]
         return (below[-1] if below else floors[0]).id
+
+    def floor_of_box(self, z_min: float, z_max: float) -> str | None:
+        """The floor of an object spanning world heights ``z_min``–``z_max``: the floor of
+        its middle (:meth:`floor_of_height`), or the one below when the object reaches
+        more than :data:`RISES_FROM_M` below that floor's surface (the top of a flight of
+        stairs, seen from the upper floor, rises from the lower one)."""
+        fid = self.floor_of_height((z_min + z_max) / 2)
+        floors = self.tracker.ordered()
+        ids = [f.id for f in floors]
+        if fid is None or fid not in ids:
+            return fid
+        k = ids.index(fid)
+        if k > 0 and z_min < floors[k].floor_z - RISES_FROM_M:
+            return ids[k - 1]
+        return fid
 
     @_locked
     def add_door(self, x: float, y: float, z: float, width: float = 0.9) -> None:

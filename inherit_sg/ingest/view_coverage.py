@@ -17,6 +17,8 @@ a robot's exploration planner holds; it never looks at what the objects are.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 SIGHT_M = 4.0  # a spot farther than this is not seen well enough to count
@@ -36,18 +38,22 @@ def _subsample(mask: np.ndarray, stride: int) -> np.ndarray:
 
 
 def sight(
-    blocked: np.ndarray, origin: tuple[int, int], targets: np.ndarray, res: float
+    blocked: np.ndarray,
+    origin: tuple[int, int],
+    targets: np.ndarray,
+    res: float,
+    sight_m: float = SIGHT_M,
 ) -> np.ndarray:
     """Which ``targets`` ((N, 2) cells) are seen from cell ``origin`` (see the module
-    docstring): within :data:`SIGHT_M`, and no blocked cell on the line before the last
+    docstring): within ``sight_m``, and no blocked cell on the line before the last
     :data:`OWN_M`."""
     if len(targets) == 0:
         return np.zeros(0, dtype=bool)
     o = np.asarray(origin, dtype=float)
     delta = targets.astype(float) - o
     length = np.hypot(delta[:, 0], delta[:, 1]) * res
-    near = length <= SIGHT_M
-    steps = max(int(np.ceil(SIGHT_M / res)), 1)
+    near = length <= sight_m
+    steps = max(int(np.ceil(sight_m / res)), 1)
     t = np.linspace(0.0, 1.0, steps + 1)[None, :]
     # Distance along the line left to the target at each sample; samples in the last
     # OWN_M (or past a target nearer than the sample spacing) are not tested.
@@ -59,29 +65,47 @@ def sight(
     return near & ~hit.any(axis=1)
 
 
+@dataclass(frozen=True)
+class CoverageGoal:
+    """When to stop adding stops: a spot counts as seen within ``sight_m``; stops are
+    added while less than ``goal`` of the spots is seen, a further stop sees at least
+    ``min_gain`` of them anew, and there are fewer than ``max_stops``."""
+
+    sight_m: float = SIGHT_M
+    goal: float = COVER_GOAL
+    min_gain: float = MIN_GAIN
+    max_stops: int = MAX_STOPS
+
+
 def coverage_stops(
     room: np.ndarray,
     reach: np.ndarray,
     blocked: np.ndarray,
     res: float,
     first: tuple[int, int],
+    spots: np.ndarray | None = None,
+    aim: CoverageGoal = CoverageGoal(),
 ) -> list[tuple[int, int]]:
     """Stops (grid cells) from which look-arounds see ``room`` (a boolean mask), starting
     with ``first``; further stops are reachable cells of the room (see the module
-    docstring). ``blocked`` marks walls and furniture footprints."""
-    targets = _subsample(room & ~blocked, max(round(TARGET_STEP_M / res), 1))
+    docstring). ``blocked`` marks what hides things (walls, furniture footprints);
+    ``spots`` the cells to be seen (default: the room's unblocked cells)."""
+    wanted = room & ~blocked if spots is None else spots
+    targets = _subsample(wanted, max(round(TARGET_STEP_M / res), 1))
     if len(targets) == 0:
         return [first]
     candidates = _subsample(room & reach, max(round(STOP_STEP_M / res), 1))
-    covered = sight(blocked, first, targets, res)
+    covered = sight(blocked, first, targets, res, aim.sight_m)
     stops = [first]
     if len(candidates) == 0:
         return stops
-    seen = np.stack([sight(blocked, (int(i), int(j)), targets, res) for i, j in candidates])
-    while covered.mean() < COVER_GOAL and len(stops) < MAX_STOPS:
+    seen = np.stack(
+        [sight(blocked, (int(i), int(j)), targets, res, aim.sight_m) for i, j in candidates]
+    )
+    while covered.mean() < aim.goal and len(stops) < aim.max_stops:
         gain = (seen & ~covered).sum(axis=1)
         best = int(np.argmax(gain))
-        if gain[best] < MIN_GAIN * len(targets):
+        if gain[best] < aim.min_gain * len(targets):
             break
         stops.append((int(candidates[best][0]), int(candidates[best][1])))
         covered |= seen[best]

@@ -295,7 +295,7 @@ class Mapper:
             # the camera was leaving
             for tracked in self.objects.objects.values():
                 box = tracked.node.bbox
-                floor = self.geometry.floor_of_height((box.min[2] + box.max[2]) / 2)
+                floor = self.geometry.floor_of_box(box.min[2], box.max[2])
                 if floor is not None and floor != tracked.floor_id:
                     tracked.floor_id = tracked.node.floor_id = floor
                     tracked.dirty = True

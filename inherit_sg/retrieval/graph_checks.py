@@ -200,7 +200,8 @@ class GraphChecker:
     ) -> dict[str, tuple[float, str]]:
         """Partial credit for object ``nodes`` near object landmarks:
         ``PROXIMITY_MAX * quality * exp(-gap / PROXIMITY_SCALE)`` for the best landmark,
-        gap being the horizontal distance between the footprints."""
+        gap being the horizontal distance between the footprints; nothing for a landmark
+        on another floor."""
         snap = self.snap
         objs = [n for n in nodes if n in snap.obj_index]
         marks = [(lid, q) for lid, q in landmarks if lid in snap.obj_index and q > 0.0]
@@ -218,6 +219,9 @@ class GraphChecker:
             gap = np.hypot(dx, dy)
             credit = PROXIMITY_MAX * quality * np.exp(-gap / PROXIMITY_SCALE)
             credit[rows == j] = 0.0  # never its own landmark
+            # a light upstairs is not near the TV right below it
+            other_floor = (snap.level[rows] != snap.level[j]) & (snap.level[rows] >= 0)
+            credit[other_floor & (snap.level[j] >= 0)] = 0.0
             better = credit > best
             best = np.where(better, credit, best)
             gaps = np.where(better, gap, gaps)

@@ -158,25 +158,31 @@ def _named_sim(cand: Scored) -> float:
     )
 
 
-def _rank_key(cand: Scored) -> tuple[float, float, str]:
-    """Best score first; among equals, the better label / function match; then by id."""
+def _rank_key(cand: Scored, seen: int = 0) -> tuple[float, float, int, str]:
+    """Best score first; among equals, the better label / function match, then the one
+    the map observed more often (``seen``: a surer detection, the main part of a thing
+    mapped in pieces), then by id."""
     total, named = 0.0, 0.0
     for t in cand.terms.values():
         total += t.polarity * t.weight * t.sim
         if t.polarity > 0 and t.kind in ("label", "function"):
             named += t.sim
-    return (-cand.h_floor * total, -named, cand.id)
+    return (-cand.h_floor * total, -named, -seen, cand.id)
 
 
-def _kind_first(out: list[Scored]) -> Callable[[Scored], tuple[int, float, float, str]]:
+def _kind_first(
+    out: list[Scored], snap: MapSnapshot
+) -> Callable[[Scored], tuple[int, float, float, int, str]]:
     """The sort key of a ranking: what is not the kind asked for ranks after what surely
     is ("not the toilet in the WC, the other toilet" answers a toilet, not a stool, even
     when every toilet is penalised), then by :func:`_rank_key`."""
     sure = any(c.h_floor and _named_sim(c) >= SURE_KIND for c in out)
 
-    def key(cand: Scored) -> tuple[int, float, float, str]:
+    def key(cand: Scored) -> tuple[int, float, float, int, str]:
         other_kind = sure and bool(cand.h_floor) and _named_sim(cand) < STRONG_MATCH
-        return (int(other_kind), *_rank_key(cand))
+        node = snap.node(cand.id)
+        seen = node.observation_count if isinstance(node, ObjectNode) else 0
+        return (int(other_kind), *_rank_key(cand, seen))
 
     return key
 
@@ -313,7 +319,7 @@ class Scorer:
         for sup in spec.scored():
             if isinstance(sup, Superlative):
                 self._superlative(sup, out, landmarks.get(sup.id, ()), notes, viewing)
-        out.sort(key=_kind_first(out))
+        out.sort(key=_kind_first(out, self.snap))
         return out, notes
 
     def _leading(self, spec: NodeSpec, out: list[Scored]) -> list[str]:

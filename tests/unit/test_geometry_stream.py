@@ -206,7 +206,7 @@ def test_an_object_belongs_to_the_floor_its_middle_stands_on() -> None:
     surface, stays on the ground floor; a rug on the upper floor, with its middle a little
     below that floor's estimated surface, is on the upper floor."""
     from inherit_sg.geometry.floors import FloorState
-    from inherit_sg.geometry.stream import FLOOR_BAND_M
+    from inherit_sg.geometry.stream import FLOOR_BAND_M, RISES_FROM_M
 
     stream = GeometricStream(enqueue_keyframes=False)
     ground = FloorState(NodeId("floor:0"), camera_z=1.4, level=0)
@@ -219,3 +219,8 @@ def test_an_object_belongs_to_the_floor_its_middle_stands_on() -> None:
     assert stream.floor_of_height(3.0 - FLOOR_BAND_M / 2) == "floor:1"
     assert stream.floor_of_height(0.5) == "floor:0"
     assert stream.floor_of_height(-0.2) == "floor:0"  # below every floor: the lowest
+    # the top of a flight of stairs seen from the upper floor rises from the ground floor
+    assert stream.floor_of_box(2.2, 3.6) == "floor:0"
+    # a chair upstairs whose foot the depth noise pulls a little below the floor
+    assert stream.floor_of_box(3.0 - RISES_FROM_M / 2, 3.9) == "floor:1"
+    assert stream.floor_of_box(2.7, 2.84) == "floor:0"  # a ceiling light downstairs

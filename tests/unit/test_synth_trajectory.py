@@ -64,7 +64,11 @@ def test_motion_is_smooth_and_looks_slightly_down(walked):
     pos = np.array([p.translation for p in traj.poses])
     assert np.linalg.norm(np.diff(pos[:, :2], axis=0), axis=1).max() < 0.75
     pitch = np.degrees(np.arcsin(-np.array([p.rotation[2, 2] for p in traj.poses])))
-    assert pitch.min() > 7 and pitch.max() < 18
+    glance = np.array([a == "glance" for a in traj.activity])
+    assert pitch[~glance].min() > 7 and pitch[~glance].max() < 18
+    # one steep look up at the ceiling in every room the walker stops in
+    assert glance.sum() >= len(house.scene.rooms) - 1
+    assert np.all(pitch[glance] < -55)
     for i, pose in enumerate(traj.poses):
         if traj.activity[i] != "stairs":
             eye = pose.translation[2] - house.plan.floors[traj.floors[i]].z
@@ -95,7 +99,17 @@ def test_camera_never_inside_furniture(walked):
 def test_frame_count_and_determinism():
     house = generate_house(7, 2)
     a, b = house.trajectory(), house.trajectory()
-    assert 150 <= len(a) <= 600
+    assert 150 <= len(a) <= 1000
     assert all(np.array_equal(p.matrix, q.matrix) for p, q in zip(a.poses, b.poses, strict=True))
     other = house.trajectory(seed=8)
     assert not np.array_equal(other.poses[5].matrix, a.poses[5].matrix)
+
+
+def test_close_looks_face_walls_and_furniture_up_close(walked):
+    """Besides the look-around, the walker steps up to what it saw only from afar: close
+    looks come in threes, 30° apart, from spots within the room."""
+    house, traj = walked
+    plain = house.trajectory(close=False)
+    assert len(traj) > len(plain)
+    assert traj.activity.count("look") > plain.activity.count("look")
+    assert "glance" not in plain.activity

@@ -62,10 +62,11 @@ class House:
     scene: Scene
     world: WorldMesh
 
-    def trajectory(self, seed: int | None = None) -> Trajectory:
-        """The exploration walk (deterministic by ``seed``, default the house seed)."""
+    def trajectory(self, seed: int | None = None, close: bool = True) -> Trajectory:
+        """The exploration walk (deterministic by ``seed``, default the house seed);
+        ``close`` off leaves out the close looks and ceiling glances."""
         rng = np.random.default_rng([self.seed if seed is None else seed, WALK_STREAM])
-        return plan_trajectory(self.plan, self.objects, rng)
+        return plan_trajectory(self.plan, self.objects, rng, close=close)
 
 
 @dataclass
@@ -209,20 +210,23 @@ def write_dataset(
     workers: int | None = None,
     max_frames: int | None = None,
     shadows: bool = False,
+    close_looks: bool = True,
 ) -> DatasetSummary:
     """Walk ``house``, render every pose and write an isg folder with ``scene.json``.
 
     ``seed`` drives the walk and the noise (default: the house seed); ``progress`` is
     called with (frames done, total); ``workers`` is the number of render processes
     (default: one per core, at most 4); ``max_frames`` keeps only the start of the walk
-    (quick demos); ``shadows`` casts shadow rays towards each room's light (slower).
+    (quick demos); ``shadows`` casts shadow rays towards each room's light (slower);
+    ``close_looks`` off walks only from room to room with look-arounds (about half the
+    frames; small things far from the look-around spots stay unseen).
     """
     seed = house.seed if seed is None else seed
     return write_walk(
         house.world,
         house.plan,
         house.scene,
-        house.trajectory(seed),
+        house.trajectory(seed, close=close_looks),
         out_dir,
         seed=seed,
         noise=noise,

@@ -16,6 +16,7 @@ from inherit_sg.ingest.synthetic.structure import JAMB
 RADIUS = 0.2  # body radius kept clear of obstacles
 BODY = 1.8
 RES = 0.05
+TALL_M = 1.3  # furniture taller than this hides what stands behind it from a standing eye
 
 
 def wall_rects(floor: FloorPlan) -> list[Rect]:
@@ -44,6 +45,10 @@ class FloorMap:
         self.grid = Grid(plan.footprint.grown(0.3), RES)
         obstacles = wall_rects(floor) + list(floor.holes)
         obstacles += [s.rect for s in plan.stairs if s.from_floor == floor.index]
+        # what hides things from a standing eye: walls and furniture above TALL_M
+        self.sight_blocked = np.zeros(self.grid.shape, dtype=bool)
+        for rect in obstacles:
+            self.grid.fill(self.sight_blocked, rect)
         for obj in objects:
             if obj.floor != floor.index or obj.flat or obj.support is not None:
                 continue
@@ -51,6 +56,8 @@ class FloorMap:
                 continue
             if obj.z - floor.z < BODY:
                 obstacles.append(obj.footprint)
+                if obj.top - floor.z > TALL_M:
+                    self.grid.fill(self.sight_blocked, obj.footprint)
         outside = [
             Rect(self.grid.bounds.x0, self.grid.bounds.y0, plan.footprint.x0, self.grid.bounds.y1),
             Rect(plan.footprint.x1, self.grid.bounds.y0, self.grid.bounds.x1, self.grid.bounds.y1),
@@ -58,6 +65,10 @@ class FloorMap:
             Rect(self.grid.bounds.x0, plan.footprint.y1, self.grid.bounds.x1, self.grid.bounds.y1),
         ]
         self.free = free_space(self.grid, obstacles + outside, RADIUS)
+        # every footprint and wall: what surfaces (and what hangs on walls) stand on
+        self.occupied = np.zeros(self.grid.shape, dtype=bool)
+        for rect in obstacles:
+            self.grid.fill(self.occupied, rect)
         blocked = ~self.free
         self.clearance = self.grid.clearance(blocked)
         self.labels = components(self.free)

@@ -1,8 +1,10 @@
 """Teleoperation-like exploration walks: every room of every storey, lowest first.
 
 On each storey the walker goes from room to room (nearest unvisited first, along
-shortest paths through doors and around furniture), stops at a roomy spot in each room
-and looks around in place, then climbs the stairs to the next storey with the camera
+shortest paths through doors and around furniture), stops at a roomy spot in each room,
+looks around in place and glances up at the ceiling, then steps up to the walls and
+furniture that the look-around saw only from afar (close looks, chosen from the plan's
+occupancy alone), and finally climbs the stairs to the next storey with the camera
 following the steps. Frames come about every 0.5 m of walking and every 30° of turning;
 the camera looks slightly down and its yaw never jumps by more than 30°.
 """
@@ -14,15 +16,26 @@ from dataclasses import dataclass, field
 from itertools import pairwise
 
 import numpy as np
+from scipy import ndimage
 
 from inherit_sg.ingest.synthetic.placement import Placed
 from inherit_sg.ingest.synthetic.plan import HousePlan, RoomPlan, StairPlan
 from inherit_sg.ingest.synthetic.planner import FloorMap
+from inherit_sg.ingest.view_coverage import CoverageGoal, coverage_stops, sight
 from inherit_sg.model import Pose
 
 STEP = 0.5  # metres between frames while walking
 TURN = math.radians(30.0)  # largest yaw change between frames
 LOOK_FRAMES = 12  # frames of the in-place look-around (360°)
+# The close look (a person filming a room for a scan steps up to its shelves, counters
+# and walls): stops are added, from the room's reachable cells, while less than
+# CLOSE.goal of the strip in front of walls and furniture (SURFACE_M deep) lies within
+# CLOSE.sight_m of a stop in plain view (view_coverage); at each stop three frames face
+# what it sees, CLOSE_SPREAD apart.
+CLOSE = CoverageGoal(sight_m=2.0, goal=0.7, min_gain=0.12, max_stops=3)
+SURFACE_M = 0.3
+CLOSE_SPREAD = math.radians(30.0)
+CEILING_PITCH = math.radians(65.0)  # the glance up at the ceiling above a stop
 
 
 @dataclass
@@ -32,7 +45,7 @@ class Trajectory:
     poses: list[Pose] = field(default_factory=list)
     floors: list[int] = field(default_factory=list)
     rooms: list[str | None] = field(default_factory=list)
-    activity: list[str] = field(default_factory=list)  # walk | look | turn | stairs
+    activity: list[str] = field(default_factory=list)  # walk | look | turn | stairs | glance
 
     def __len__(self) -> int:
         return len(self.poses)
@@ -109,6 +122,13 @@ class _Walker:
             self.emit("look")
         self.pitch = level
 
+    def glance_up(self) -> None:
+        """One frame looking steeply up: the ceiling light right above the stop."""
+        level = self.pitch
+        self.pitch = -CEILING_PITCH
+        self.emit("glance")
+        self.pitch = level
+
     def climb(self, stairs: StairPlan) -> None:
         heading = math.pi / 2 if stairs.direction > 0 else -math.pi / 2
         self.turn_to(heading)
@@ -160,20 +180,62 @@ def _viewpoint(fm: FloorMap, room: RoomPlan, reach: np.ndarray) -> tuple[int, in
     return int(best[0]), int(best[1])
 
 
-def _tour_floor(w: _Walker, fm: FloorMap, rooms: list[RoomPlan]) -> None:
+def _surfaces(fm: FloorMap, room: RoomPlan) -> np.ndarray:
+    """The strip of ``room`` right in front of its walls and furniture: where things
+    stand on surfaces and hang on walls, and what a close look is for."""
+    inside = np.zeros(fm.free.shape, dtype=bool)
+    fm.grid.fill(inside, room.rect)
+    near = ndimage.binary_dilation(fm.occupied, iterations=max(round(SURFACE_M / fm.grid.res), 1))
+    return inside & near & ~fm.occupied
+
+
+def _close_look(w: _Walker, fm: FloorMap, stop: tuple[int, int], spots: np.ndarray) -> None:
+    """Walk to ``stop`` and look over the surfaces within reach: facing the middle of
+    the spots it sees up close, a frame either side and one in the middle."""
+    _dist, pred = fm.search(fm.snap(w.x, w.y))
+    w.walk(fm.path(pred, stop))
+    cells = np.argwhere(spots)
+    seen = sight(fm.sight_blocked, stop, cells, fm.grid.res, CLOSE.sight_m)
+    if not seen.any():
+        return
+    row, col = cells[seen].mean(axis=0)
+    sx, sy = fm.grid.point(*stop)
+    tx, ty = fm.grid.point(round(row), round(col))
+    face = math.atan2(ty - sy, tx - sx)
+    for offset in (-CLOSE_SPREAD, 0.0, CLOSE_SPREAD):
+        w.turn_to(_wrap(face + offset))
+        w.emit("look")
+
+
+def _tour_floor(w: _Walker, fm: FloorMap, rooms: list[RoomPlan], close: bool) -> None:
     start = fm.snap(w.x, w.y)
     reach = fm.labels == fm.labels[start]
     targets = {room.id: vp for room in rooms if (vp := _viewpoint(fm, room, reach)) is not None}
+    by_id = {room.id: room for room in rooms}
     while targets:
         dist, pred = fm.search(fm.snap(w.x, w.y))
         room_id = min(sorted(targets), key=lambda r: fm.cost_to(dist, targets[r]))
         goal = targets.pop(room_id)
         w.walk(fm.path(pred, goal))
         w.look_around()
+        if not close:
+            continue
+        w.glance_up()
+        room = by_id[room_id]
+        spots = _surfaces(fm, room)
+        inside = np.zeros(fm.free.shape, dtype=bool)
+        fm.grid.fill(inside, room.rect)
+        stops = coverage_stops(inside, reach, fm.sight_blocked, fm.grid.res, goal, spots, CLOSE)
+        for stop in stops[1:]:
+            _close_look(w, fm, stop, spots)
 
 
-def plan_trajectory(plan: HousePlan, objects: list[Placed], rng: np.random.Generator) -> Trajectory:
-    """An exploration walk through every room of every storey, lowest storey first."""
+def plan_trajectory(
+    plan: HousePlan, objects: list[Placed], rng: np.random.Generator, close: bool = True
+) -> Trajectory:
+    """An exploration walk through every room of every storey, lowest storey first;
+    ``close``: each room also gets a glance at its ceiling and close looks over the
+    surfaces its look-around saw only from afar (off: the earlier walk)."""
     w = _Walker(plan, rng)
     w.x, w.y = _front_door(plan)
     w.yaw = math.pi / 2 if w.y < plan.footprint.cy else -math.pi / 2
@@ -181,7 +243,7 @@ def plan_trajectory(plan: HousePlan, objects: list[Placed], rng: np.random.Gener
     for floor in plan.floors:
         w.floor = floor.index
         fm = FloorMap(plan, floor, objects)
-        _tour_floor(w, fm, floor.rooms)
+        _tour_floor(w, fm, floor.rooms, close)
         stairs = next((s for s in plan.stairs if s.from_floor == floor.index), None)
         if stairs is None:
             break

@@ -19,7 +19,7 @@ from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, OBJECT, ONE, VAGUE
-from inherit_sg.retrieval.rules.problems import split_problem
+from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
 from inherit_sg.vocab.lexicon import lexicon
@@ -141,11 +141,21 @@ def _about_target(head: NP, other: NP, notes: list[str]) -> bool:
     return True
 
 
+def _asks_only_for_help(clause: Clause) -> bool:
+    """Whether the request names no thing and no function of its own ("is there something
+    upstairs that could help?")."""
+    head = clause.head
+    named = head is not None and (head.kind not in (GENERIC, VAGUE) or bool(head.labels))
+    functions = head is not None and any(c.kind == "function" for c in head.constraints)
+    return not (named or functions or clause.functions or clause.implied)
+
+
 def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
     analysed, fixes = analyse_text(text)
     problem, sentences = split_problem(analysed)
+    unknown_problem = open_problem(analysed) if problem is None else None
     words = _flat(sentences)
     reason = global_reason(words) if words or problem is None else None
     if reason is not None:
@@ -179,6 +189,9 @@ def parse_uncached(text: str) -> ParsedQuery:
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads
+    elif unknown_problem is not None and _asks_only_for_help(clause):
+        notes.append(f"the statement {unknown_problem.text!r} says what is needed (by meaning)")
+        clause.implied.append(unknown_problem)
     return assemble(text, clause, refine, notes, [w.text for w in words])
 
 

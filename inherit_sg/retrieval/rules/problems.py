@@ -6,7 +6,10 @@ problem when it is a statement (it opens with a subject and neither asks nor see
 names a state of the vocabulary's problems (``functions.toml``), with its subject where
 one is needed. The statement is then taken out of the request: its nouns are not the
 target ("hands") and its adjectives are not attributes ("dark"); the rest ("is there
-something in the kitchen that could help") is parsed as usual and gets the function.
+something in the kitchen that could help") is parsed as usual and gets the function. A statement that names no problem of the
+vocabulary ("I wonder how much I weigh. Is there something that could help?") gives a
+function in its own words when the rest asks for nothing more than something that helps
+(:func:`open_problem`); retrieval then matches it by meaning.
 """
 
 from __future__ import annotations
@@ -134,6 +137,20 @@ def split_problem(
     if place:  # "it is stuffy in the bedroom": the place stays a constraint
         rest = [*place, COMMA, *rest] if rest else place
     return made, ([rest] if rest else []) + sentences[1:]
+
+
+def open_problem(sentences: list[list[Word]]) -> FunctionConstraint | None:
+    """A leading statement that names no problem of the vocabulary ("I wonder how much I
+    weigh."), as a function in its own words (no kinds listed), for a request that then
+    asks only for "something that could help"; None when the request opens otherwise or
+    the statement is a single clause of a longer sentence."""
+    if len(sentences) < 2 or not sentences[0]:
+        return None
+    first = [w for w in sentences[0] if w.text != "."]
+    if not _is_statement(first) or _object_subject(first) or match_problem(first) is not None:
+        return None
+    text = " ".join(w.text for w in first)
+    return FunctionConstraint(function=text, weight=weighted("function", None), text=text)
 
 
 def _place_part(words: list[Word]) -> list[Word]:

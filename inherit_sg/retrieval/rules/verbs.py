@@ -64,8 +64,10 @@ def verb_reading(tok: Tok) -> str | None:
 def is_verb_here(g: Grammar) -> bool:
     """Whether the current token is a verb in verb position."""
     tok = g.peek()
-    if tok is None or verb_reading(tok) is None:
+    if tok is None:
         return False
+    if verb_reading(tok) is None:
+        return _open_verb_here(g, tok)
     prev = g.peek(-1) if g.i > 0 else None
     if prev is None:
         return not tok.has("room", "noun") or (tok.has("fverb") and g.at("det", k=1))
@@ -79,6 +81,24 @@ def is_verb_here(g: Grammar) -> bool:
         if prev.text.endswith(" to"):  # "go to relax" (but "go to the study")
             return not tok.has("noun", "room", "unk")
     return False
+
+
+def _open_verb_here(g: Grammar, tok: Tok) -> bool:
+    """Whether a verb the vocabulary does not know opens what the speaker wants to do:
+    a base form after "I want to" / "I'd like to" / "I need to" or after "(where) can I"
+    / "could we" ("I want to blow my nose", "where can I weigh myself")."""
+    if not (tok.has("overb") and tok.tag == "VB") or g.i < 2:
+        return False
+    prev, before = g.peek(-1), g.peek(-2)
+    if prev is None or before is None:
+        return False
+    if prev.has("to") and before.has("filler"):
+        return any(w in before.text for w in _VERB_FILLERS)
+    if not (prev.has("seeker") and before.has("modal")):
+        return False
+    # "where can I …", "can I …"; not "what can I pull down to …", which asks for a thing
+    opener = g.peek(-3) if g.i >= 3 else None
+    return opener is None or opener.text == "where"
 
 
 def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | None]:
@@ -163,7 +183,11 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         # but "take a shower" is the verb's own sense (wash)
         g.notes.append(f"'{tok.text} {obj.noun}': the object is the target")
         return [], obj
-    if sense is None and (verb in lx.light_verbs or (named and not purpose)):
+    # a verb the vocabulary does not know, with a word it does not know either ("blow my
+    # nose"), says what the speaker wants to do; with a known thing ("inspect the
+    # heater") the thing is sought
+    thing = named and ((obj is not None and obj.known) or verb_reading(tok) is not None)
+    if sense is None and (verb in lx.light_verbs or (thing and not purpose)):
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
