@@ -55,3 +55,23 @@ def test_the_thing_a_light_verb_takes_in_a_purpose_phrase_is_sought() -> None:
     parsed = parse_rules("What's a good spot to make a phone call upstairs?")
     assert parsed.target.labels == ("phone",)
     assert parse_rules("somewhere to find the remote").target.labels == ("remote",)
+
+
+def test_a_statement_naming_no_known_problem_says_what_is_needed() -> None:
+    text = "I wonder how much I weigh. Is there something on the second floor that could help?"
+    con = _open_function(text)
+    assert "weigh" in con.text
+    assert max(_matches(con), key=_matches(con).__getitem__) == "scale"
+    # a statement about a thing, or a request that names what it wants, is not one
+    assert not [
+        c
+        for c in parse_rules("The chair is brown. Find it.").constraints
+        if isinstance(c, FunctionConstraint)
+    ]
+
+
+def test_an_unknown_verb_the_speaker_wants_to_do_is_a_purpose() -> None:
+    assert "blow" in _open_function("I want to blow my nose. Show me where.").function
+    assert "blow" in _open_function("Where can I blow my nose?").function
+    # with a thing the vocabulary knows, the thing is sought
+    assert parse_rules("I want to inspect the heater").target.labels == ("heater",)
