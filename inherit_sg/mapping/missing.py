@@ -12,7 +12,7 @@ import numpy as np
 from inherit_sg.model import Frame, ObjectNode, ObjectStatus
 
 MIN_VIEWS = 2  # keyframes that must show the place before the object counts as missing
-DEPTH_TOLERANCE = 0.35  # metres: slack for depth noise when testing for occluders
+DEPTH_TOLERANCE = 0.1  # metres: slack for depth noise; less than a wall is thick (what hangs on its far side is hidden)
 MAX_RANGE = 6.0  # metres: farther places are not "in clear view"
 MIN_INSIDE = 0.75  # share of the object's image that must lie inside the frame
 MIN_SIDE = 0.04  # the object's image must be at least this share of the frame wide and high
@@ -35,7 +35,8 @@ class MissingTracker:
         the whole box in front of the camera, at least :data:`MIN_INSIDE` of its image
         inside the frame, at least :data:`MIN_SIDE` of the image wide and high, within
         :data:`MAX_RANGE`, and nothing standing in front of it (the median depth around
-        its centre reaches the object, or what is behind it)."""
+        its centre reaches at least the box's nearest corner, less
+        :data:`DEPTH_TOLERANCE`: a wall right in front of a long counter hides it)."""
         todo = [o for oid, o in self.earlier.items() if oid not in self.seen]
         if not todo:
             return
@@ -45,15 +46,14 @@ class MissingTracker:
             view = _clear_view(node, inv, k.fx, k.fy, k.cx, k.cy, k.width, k.height)
             if view is None:
                 continue
-            (u, v), z = view
+            (u, v), nearest = view
             patch = frame.depth[
                 max(0, v - 2) : min(k.height, v + 3), max(0, u - 2) : min(k.width, u + 3)
             ]
             valid = patch[patch > 0]
             if not len(valid):
                 continue
-            d = float(np.median(valid))
-            if d >= z - DEPTH_TOLERANCE - 0.5 * max(node.bbox.size):
+            if float(np.median(valid)) >= nearest - DEPTH_TOLERANCE:
                 self.views[node.id] += 1
 
     def merged(self, keep: str, drop: str) -> None:
@@ -85,8 +85,9 @@ def _clear_view(
     width: int,
     height: int,
 ) -> tuple[tuple[int, int], float] | None:
-    """The pixel of the object's centre and its depth when the object is in clear view of
-    the camera (see :meth:`MissingTracker.check_frame`), else None."""
+    """The pixel of the object's centre and the depth of its box's nearest corner when the
+    object is in clear view of the camera (see :meth:`MissingTracker.check_frame`), else
+    None."""
     lo, hi = np.asarray(node.bbox.min), np.asarray(node.bbox.max)
     corners = np.array(
         [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
@@ -106,4 +107,4 @@ def _clear_view(
         return None
     if not (0 <= u[0] < width and 0 <= v[0] < height):
         return None
-    return (int(u[0]), int(v[0])), float(cam[0, 2])
+    return (int(u[0]), int(v[0])), float(cam[1:, 2].min())
