@@ -157,7 +157,8 @@ def render(docs: list[dict[str, Any]]) -> Path:
         f"{WIDTH}×{HEIGHT}. Requests are a category-balanced cut of each dataset's "
         "`queries.jsonl` (`--max-queries`). Generated `house-811-*` / `house-812-*` rows come "
         "from the current generator (Matterport3D room types and object categories, "
-        "open-plan floors, continuous colours) on seeds never used while tuning; "
+        "open-plan floors, continuous colours) on seeds that were fresh when first measured "
+        "(see *Fresh generated houses* for seeds nobody had looked at); "
         "`classic-house-*` rows are the earlier generator's figures (`--style classic`), "
         "kept for comparison with past results."
     )
@@ -171,6 +172,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("mp3d_third", MP3D_THIRD_JSON),
             ("mp3d_rooms", MP3D_ROOMS_JSON),
             ("mp3d_objects", MP3D_OBJECTS_JSON),
+            ("fresh_seeds", RESULTS.parent / "fresh_seeds.json"),
             ("hostile", RESULTS.parent / "hostile.json"),
             ("cypher_isolation", RESULTS.parent / "cypher_isolation.json"),
         )

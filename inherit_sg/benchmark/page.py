@@ -93,6 +93,16 @@ def render_page(
         report.latency_section(docs),
     ]
     sets = request_sets or {}
+    if "fresh_seeds" in sets:
+        parts += [
+            "## Fresh generated houses",
+            "Houses from seeds nobody had looked at before they were measured (a seed "
+            "whose misses were read is no longer fresh), clean and noisy, 640×480, the "
+            "default walk; from `bench/results/fresh_seeds.json` (`python "
+            "bench/fresh_seeds.py --seeds …`). The `house-811/812` rows above were fresh "
+            "when first measured and have been looked at since.",
+            request_sets_section.fresh_seeds_section(sets["fresh_seeds"]),
+        ]
     if "parse" in sets:
         parts += [
             "## Request parsing",

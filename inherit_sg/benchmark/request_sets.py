@@ -100,3 +100,26 @@ def mp3d_rooms_section(rooms: dict[str, Any], objects: dict[str, Any] | None = N
             f"({objects.get('objects_found', '?')} within 0.5 m)."
         )
     return "\n\n".join(lines)
+
+
+def fresh_seeds_section(doc: dict[str, Any]) -> str:
+    """Retrieval per fresh generated house (``bench/fresh_seeds.py``) and the mean per
+    noise level."""
+    rows = [
+        [
+            row["house"],
+            str(row["requests"]),
+            pct(row["within_1m"]),
+            *(pct(row["groups"].get(g)) for g in ("A-C", "D", "E", "F")),
+            ratio_pct(row["object_precision"]),
+            ratio_pct(row["object_recall"]),
+            str(row.get("frames") or "—"),
+        ]
+        for row in doc.get("houses", [])
+    ]
+    means = ", ".join(
+        f"{noise} {pct(value)} %" for noise, value in doc.get("mean_within_1m", {}).items()
+    )
+    header = ["house", "requests", "within 1 m", "A-C", "D", "E", "F", "object P", "object R"]
+    note = f"Mean within 1 m, weighted by requests: {means}." if means else ""
+    return table([*header, "frames"], rows) + ("\n\n" + note if note else "")

@@ -3,6 +3,7 @@ metric functions."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -192,3 +193,28 @@ def test_trust_tables_are_rendered_from_the_bench_files() -> None:
     assert "## User Cypher in a worker process" in page
     assert "| small statement p50 / p99, worker | 0.90 ms / 1.00 ms |" in page
     assert "| a 10.0 s limit answers after (worker) | 10.01 s |" in page
+
+
+def test_fresh_houses_are_rendered_from_their_summary(tmp_path: Path) -> None:
+    """bench/fresh_seeds.py's summary: one row per house, the mean per noise level."""
+    import importlib.util
+
+    script = Path(__file__).resolve().parents[2] / "bench" / "fresh_seeds.py"
+    spec = importlib.util.spec_from_file_location("fresh_seeds", script)
+    assert spec is not None and spec.loader is not None
+    fresh = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fresh)
+    paths = []
+    for name, within, n in (("house-1-clean", 90.0, 300), ("house-2-clean", 80.0, 100)):
+        doc = make_doc(name)
+        doc["accuracy"]["ours"]["overall"] = {"n": n, "within_1m": within}
+        doc["mapping"]["quality"] = {"objects": {"precision": 0.99, "recall": 0.98}}
+        path = tmp_path / f"{name}.json"
+        path.write_text(json.dumps(doc), encoding="utf-8")
+        paths.append(path)
+    summary = fresh.summarise(paths)
+    assert summary["mean_within_1m"] == {"clean": 87.5}
+    page = render_page([make_doc("house-a")], None, {}, "", {"fresh_seeds": summary})
+    assert "## Fresh generated houses" in page
+    assert "| house-1-clean | 300 | 90.0 |" in page
+    assert "Mean within 1 m, weighted by requests: clean 87.5 %." in page
