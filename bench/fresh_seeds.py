@@ -38,7 +38,7 @@ def run_house(seed: int, noise: str, work: Path, max_queries: int) -> Path:
     """Generate (kept when already in ``work``), map and bench one house; its JSON path."""
     dataset = work / f"house-{seed}-{noise}"
     if not (dataset / "scene.json").is_file():
-        _cli("generate", "--seed", str(seed), "--floors", "2", "--noise", noise,
+        _cli("sim", "generate", "--seed", str(seed), "--floors", "2", "--noise", noise,
              "--width", str(WIDTH), "--height", str(HEIGHT), "--out", str(dataset), "--force")  # fmt: skip
     map_dir = work / f"map-{seed}-{noise}"
     if not (map_dir / "graph.kuzu").exists():
