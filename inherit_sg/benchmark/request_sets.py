@@ -120,6 +120,7 @@ def fresh_seeds_section(doc: dict[str, Any]) -> str:
     means = ", ".join(
         f"{noise} {pct(value)} %" for noise, value in doc.get("mean_within_1m", {}).items()
     )
-    header = ["house", "requests", "within 1 m", "A-C", "D", "E", "F", "object P", "object R"]
+    header = ["house", "requests", "within 1 m", "A-C", "D", "E", "F", "object P", "object R",
+              "frames"]  # fmt: skip
     note = f"Mean within 1 m, weighted by requests: {means}." if means else ""
-    return table([*header, "frames"], rows) + ("\n\n" + note if note else "")
+    return table(header, rows) + ("\n\n" + note if note else "")

@@ -76,6 +76,13 @@ FLOOR_BAND_M = 0.1
 RISES_FROM_M = 0.3
 
 
+def _floor_index(floors: list[FloorState], z: float) -> int:
+    """Index in ``floors`` (lowest first) of the highest floor whose surface lies at most
+    :data:`FLOOR_BAND_M` above ``z``; the lowest when none does."""
+    below = [k for k, f in enumerate(floors) if f.floor_z - FLOOR_BAND_M <= z]
+    return below[-1] if below else 0
+
+
 class GeometricStream:
     """Fast half of the dual-stream construction (floors, rooms, doors, keyframes).
 
@@ -371,25 +378,20 @@ class GeometricStream:
         thickness below the next floor's surface, its middle lower still, while even a rug
         on that floor has its middle at or above the surface."""
         floors = self.tracker.ordered()
-        if not floors:
-            return None
-        below = [f for f in floors if f.floor_z - FLOOR_BAND_M <= z]
-        return (below[-1] if below else floors[0]).id
+        return floors[_floor_index(floors, z)].id if floors else None
 
     def floor_of_box(self, z_min: float, z_max: float) -> str | None:
         """The floor of an object spanning world heights ``z_min``–``z_max``: the floor of
         its middle (:meth:`floor_of_height`), or the one below when the object reaches
         more than :data:`RISES_FROM_M` below that floor's surface (the top of a flight of
         stairs, seen from the upper floor, rises from the lower one)."""
-        fid = self.floor_of_height((z_min + z_max) / 2)
         floors = self.tracker.ordered()
-        ids = [f.id for f in floors]
-        if fid is None or fid not in ids:
-            return fid
-        k = ids.index(fid)
+        if not floors:
+            return None
+        k = _floor_index(floors, (z_min + z_max) / 2)
         if k > 0 and z_min < floors[k].floor_z - RISES_FROM_M:
-            return ids[k - 1]
-        return fid
+            k -= 1
+        return floors[k].id
 
     @_locked
     def add_door(self, x: float, y: float, z: float, width: float = 0.9) -> None:

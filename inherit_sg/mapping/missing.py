@@ -12,7 +12,9 @@ import numpy as np
 from inherit_sg.model import Frame, ObjectNode, ObjectStatus
 
 MIN_VIEWS = 2  # keyframes that must show the place before the object counts as missing
-DEPTH_TOLERANCE = 0.1  # metres: slack for depth noise; less than a wall is thick (what hangs on its far side is hidden)
+# metres: slack for depth noise; less than a wall is thick, so what hangs on its far
+# side stays hidden
+DEPTH_TOLERANCE = 0.1
 MAX_RANGE = 6.0  # metres: farther places are not "in clear view"
 MIN_INSIDE = 0.75  # share of the object's image that must lie inside the frame
 MIN_SIDE = 0.04  # the object's image must be at least this share of the frame wide and high

@@ -180,13 +180,12 @@ def _viewpoint(fm: FloorMap, room: RoomPlan, reach: np.ndarray) -> tuple[int, in
     return int(best[0]), int(best[1])
 
 
-def _surfaces(fm: FloorMap, room: RoomPlan) -> np.ndarray:
-    """The strip of ``room`` right in front of its walls and furniture: where things
-    stand on surfaces and hang on walls, and what a close look is for."""
-    inside = np.zeros(fm.free.shape, dtype=bool)
-    fm.grid.fill(inside, room.rect)
+def _surface_strip(fm: FloorMap) -> np.ndarray:
+    """The strip of the storey right in front of its walls and furniture (SURFACE_M
+    deep): where things stand on surfaces and hang on walls, and what a close look is
+    for."""
     near = ndimage.binary_dilation(fm.occupied, iterations=max(round(SURFACE_M / fm.grid.res), 1))
-    return inside & near & ~fm.occupied
+    return near & ~fm.occupied
 
 
 def _close_look(w: _Walker, fm: FloorMap, stop: tuple[int, int], spots: np.ndarray) -> None:
@@ -212,19 +211,19 @@ def _tour_floor(w: _Walker, fm: FloorMap, rooms: list[RoomPlan], close: bool) ->
     reach = fm.labels == fm.labels[start]
     targets = {room.id: vp for room in rooms if (vp := _viewpoint(fm, room, reach)) is not None}
     by_id = {room.id: room for room in rooms}
+    strip = _surface_strip(fm) if close else None
     while targets:
         dist, pred = fm.search(fm.snap(w.x, w.y))
         room_id = min(sorted(targets), key=lambda r: fm.cost_to(dist, targets[r]))
         goal = targets.pop(room_id)
         w.walk(fm.path(pred, goal))
         w.look_around()
-        if not close:
+        if strip is None:
             continue
         w.glance_up()
-        room = by_id[room_id]
-        spots = _surfaces(fm, room)
         inside = np.zeros(fm.free.shape, dtype=bool)
-        fm.grid.fill(inside, room.rect)
+        fm.grid.fill(inside, by_id[room_id].rect)
+        spots = inside & strip
         stops = coverage_stops(inside, reach, fm.sight_blocked, fm.grid.res, goal, spots, CLOSE)
         for stop in stops[1:]:
             _close_look(w, fm, stop, spots)

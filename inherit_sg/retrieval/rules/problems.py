@@ -6,10 +6,11 @@ problem when it is a statement (it opens with a subject and neither asks nor see
 names a state of the vocabulary's problems (``functions.toml``), with its subject where
 one is needed. The statement is then taken out of the request: its nouns are not the
 target ("hands") and its adjectives are not attributes ("dark"); the rest ("is there
-something in the kitchen that could help") is parsed as usual and gets the function. A statement that names no problem of the
-vocabulary ("I wonder how much I weigh. Is there something that could help?") gives a
-function in its own words when the rest asks for nothing more than something that helps
-(:func:`open_problem`); retrieval then matches it by meaning.
+something in the kitchen that could help") is parsed as usual and gets the function.
+A statement that names no problem of the vocabulary ("I wonder how much I weigh. Is
+there something that could help?") gives a function in its own words when the rest asks
+for nothing more than something that helps (:func:`open_problem`); retrieval then
+matches it by meaning.
 """
 
 from __future__ import annotations
