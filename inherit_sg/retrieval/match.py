@@ -72,6 +72,9 @@ HYPERNYM_STEP = 0.1
 # ... plus up to this much by text-embedding resemblance to the word asked for, so that
 # "kitchen counter" leads "counter" for "kitchen island".
 HYPERNYM_RESEMBLANCE = 0.05
+# A sibling kind under the same parent ("sofa chair" for "dining chair": both chairs):
+# detectors often use a sibling's word, and text resemblance may say more.
+SIBLING = 0.4
 # Weaker resemblance than this is ignored.
 MIN_MATCH = 0.1
 
@@ -149,6 +152,22 @@ def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float,
     return None
 
 
+def _sibling(label: str, wanted: set[str]) -> tuple[float, str] | None:
+    """A map label naming another kind of the asked kind's parent ("sofa chair" and
+    "dining chair" are both chairs); the parent must be a kind itself, not a broad class
+    such as furniture or seat."""
+    low = label.strip().lower()
+    forms = (low, *canonical_labels(label))
+    for want in sorted(wanted):
+        chain = object_vocab.is_a(want)
+        parent = chain[0] if chain else None
+        if parent is None or parent not in object_vocab.vocabulary().kinds:
+            continue
+        if any(f != want and f != parent and is_kind_of(f, parent) for f in forms):
+            return SIBLING, f"a {label} and a {want} are both kinds of {parent} (vocabulary)"
+    return None
+
+
 def _generality(specific: str, general: str) -> int:
     """How many steps up the vocabulary's ``is_a`` chain ``general`` lies from
     ``specific`` (0: its parent, or a head noun the vocabulary does not list)."""
@@ -170,6 +189,13 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
             out[label] = found
     queries = [q for q in dict.fromkeys([*con.labels, con.noun]) if q]
     _semantic(out, queries, labels, labels, sim, LABEL_SEMANTIC_MAX)
+    if not con.negated:  # "not a dining chair" says nothing against an armchair
+        for label in labels:
+            if label in general:
+                continue
+            found = _sibling(label, wanted)
+            if found is not None and (label not in out or out[label][0] < found[0]):
+                out[label] = found
     if general and queries:
         # among general words, the one closer in meaning to the request leads a little
         names = sorted(general)

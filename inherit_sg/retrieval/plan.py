@@ -45,6 +45,7 @@ from inherit_sg.retrieval.similarity import PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
 from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab.functions import kinds_serving, usual_room
+from inherit_sg.vocab.rooms import room_type
 
 _LIVE = "coalesce(o.status, 'active') <> 'removed'"
 CYPHER_OBJECTS_BY_LABEL = f"MATCH (o:Object) WHERE o.label IN $labels AND {_LIVE} RETURN o.id"
@@ -240,41 +241,95 @@ _EVERYWHERE = frozenset({"wall", "floor", "ceiling", "room", "house"})
 COMPOUND_NEAR_WEIGHT = 0.4
 
 
-def compound_nearness(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[Constraint, ...]:
-    """A kind asked for by a compound the map does not use ("bar stool", "desk lamp",
-    "piano bench") whose first word names a kind the map has: the thing is found by its
-    general word (stool) and is likely near that kind (a bar): a weak "near" relation.
-    Nothing when the map has the compound's own label or lacks the first word's kind."""
+def _absent_compounds(
+    cons: tuple[Constraint, ...], snap: MapSnapshot
+) -> tuple[list[tuple[LabelConstraint, str]], set[str]]:
+    """The positive label constraints asking for a compound kind the map has no label
+    for ("bar stool", "dining chair"), each with that compound, and the map's labels
+    and their kinds."""
     asked = [
         c
         for c in cons
         if isinstance(c, LabelConstraint) and not c.negated and any(" " in w for w in c.labels)
     ]
     if not asked:  # most requests name no compound: no need to look at the map's labels
-        return ()
+        return [], set()
     present: set[str] = set()
     for raw in snap.raw_labels():
         present.update({raw.strip().lower(), *canonical_labels(raw)})
-    out: list[Constraint] = []
+    out: list[tuple[LabelConstraint, str]] = []
     for con in asked:
         if any(label in present for label in con.labels):
             continue
-        for label in con.labels:
-            words = label.split()
-            mod = object_vocab.canonical_label(words[0]) if len(words) > 1 else None
-            if mod is None or mod in _EVERYWHERE or mod not in present or mod == label:
-                continue
-            out.append(
-                RelationConstraint(
-                    id=f"{con.id}~{mod}",
-                    predicate="near",
-                    landmark=Landmark(target=Target(labels=(mod,), noun=words[0])),
-                    weight=COMPOUND_NEAR_WEIGHT,
-                    text=f"a {label} is by a {mod} (the map says only {words[-1]})",
-                )
+        out.extend((con, label) for label in con.labels if " " in label)
+    return out, present
+
+
+def compound_nearness(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[Constraint, ...]:
+    """A kind asked for by a compound the map does not use ("bar stool", "desk lamp",
+    "piano bench") whose first word names a kind the map has: the thing is found by its
+    general word (stool) and is likely near that kind (a bar): a weak "near" relation.
+    Nothing when the map has the compound's own label or lacks the first word's kind."""
+    absent, present = _absent_compounds(cons, snap)
+    out: list[Constraint] = []
+    done: set[str] = set()
+    for con, label in absent:
+        if con.id in done:
+            continue
+        words = label.split()
+        mod = object_vocab.canonical_label(words[0])
+        if mod is None or mod in _EVERYWHERE or mod not in present or mod == label:
+            continue
+        done.add(con.id)
+        out.append(
+            RelationConstraint(
+                id=f"{con.id}~{mod}",
+                predicate="near",
+                landmark=Landmark(target=Target(labels=(mod,), noun=words[0])),
+                weight=COMPOUND_NEAR_WEIGHT,
+                text=f"a {label} is by a {mod} (the map says only {words[-1]})",
             )
-            break
+        )
     return tuple(out)
+
+
+# Weight of the room a compound's first word names ("dining chair": a dining room).
+COMPOUND_ROOM_WEIGHT = 0.5
+
+
+def _room_word(word: str) -> str | None:
+    """The room type a compound's first word names: "kitchen", "office", "dining"
+    (a dining room), "living" (a living room)."""
+    return room_type(word) or room_type(f"{word} room")
+
+
+def compound_rooms(
+    cons: tuple[Constraint, ...], snap: MapSnapshot, placed: tuple[Constraint, ...] = ()
+) -> tuple[Constraint, ...]:
+    """A kind asked for by a compound the map does not use, whose first word names a
+    type of room ("dining chair", "kitchen cabinet", "bathroom sink"): the thing is found
+    by its general word (chair) or a sibling the detector used instead ("sofa chair"),
+    and the one in such a room is more likely it. A room constraint, when the request
+    names no room and the compound's first word is no kind the map has (``placed``
+    holds the nearness :func:`compound_nearness` gave it)."""
+    if any(isinstance(c, RoomConstraint) for c in cons) or placed:
+        return ()
+    absent, _present = _absent_compounds(cons, snap)
+    for con, label in absent:
+        words = label.split()
+        rtype = _room_word(words[0])
+        if rtype is None or object_vocab.canonical_label(words[0]) is not None:
+            continue
+        return (
+            RoomConstraint(
+                id=f"{con.id}~room",
+                type=rtype,
+                name=rtype,
+                weight=COMPOUND_ROOM_WEIGHT,
+                text=f"a {label} is usually in a {rtype} (the map says only {words[-1]})",
+            ),
+        )
+    return ()
 
 
 # Weight of the room a function is usually done in ("wash dishes": a kitchen).
@@ -360,7 +415,9 @@ class Compiler:
         viewpoint: Viewpoint | None = None,
     ) -> NodeSpec:
         cons = (*implied_constraints(key, target, cons), *cons)
-        cons = (*cons, *compound_nearness(cons, self.snap), *usual_rooms(cons))
+        near = compound_nearness(cons, self.snap)
+        cons = (*cons, *near, *compound_rooms(cons, self.snap, near))
+        cons = (*cons, *usual_rooms(cons))
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
         spec.viewpoint = viewpoint

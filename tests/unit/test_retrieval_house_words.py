@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.constraints import RelationConstraint, RoomConstraint
-from inherit_sg.retrieval.plan import compound_nearness, usual_rooms
+from inherit_sg.retrieval.plan import compound_nearness, compound_rooms, usual_rooms
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from inherit_sg.vocab.rooms import also_named, room_type
 from tests.unit.retrieval_fixtures import floor_snapshot
@@ -100,3 +100,28 @@ def test_the_side_ruled_out_is_kept() -> None:
     sides = [(c.direction, c.negated) for c in parsed.constraints if isinstance(c, Superlative)]
     assert sides == [("left", False), ("right", True)]
     assert parsed.viewpoint is not None and parsed.target.labels == ("basket",)
+
+
+def test_a_compound_naming_a_room_prefers_its_general_word_in_that_room() -> None:
+    """A map whose detector called the dining chairs "sofa chair" (a real Matterport3D
+    annotation) and has one plain "chair" in the living room: "the dining chair" is one
+    of the chairs in the dining room, and "closest to the bar" ranks among them."""
+    rooms = {**ROOMS, "dining": ("dining room", -12.0)}
+    doors = [*DOORS, ("kitchen", "dining")]
+    objects = [
+        *OBJECTS,
+        ("chair_living", "chair", -1.0, 1.0, "living"),
+        ("sofa_chair_near", "sofa chair", -10.0, 0.0, "dining"),
+        ("sofa_chair_far", "sofa chair", -14.0, 0.0, "dining"),
+    ]
+    snap = floor_snapshot(objects, rooms, doors)
+    parsed = parse_rules("the dining chair closest to the bar")
+    (room,) = compound_rooms(parsed.constraints, snap)
+    assert isinstance(room, RoomConstraint) and room.type == "dining room"
+    ranked, _ = rank(snap, parsed)
+    assert ranked[0].id == "obj:sofa_chair_near"
+    # a room the request names itself wins; a map with the compound's label needs none
+    assert not compound_rooms(parse_rules("the dining chair in the kitchen").constraints, snap)
+    assert not compound_rooms(parse_rules("the kitchen sink").constraints, _snap())
+    # a first word that is itself a kind the map has places by nearness instead
+    assert not compound_rooms(parse_rules("the bar stool").constraints, snap)
