@@ -62,6 +62,9 @@ OPEN_FUNCTION_MARGIN = 0.06
 OPEN_FUNCTION_MIN_COS = 0.3
 # Labels that only resemble the requested one count at most this much.
 LABEL_SEMANTIC_MAX = 0.8
+# Another word for the requested thing ("wall frame" for "picture"): a map label that is
+# the very word asked for leads it by a little.
+SYNONYM = 0.97
 # A kind of the requested thing by its name ("dining table" for "table").
 HYPONYM = 0.9
 # A map label more general than the thing asked for ("light" for "ceiling light", "rug"
@@ -134,11 +137,13 @@ def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float,
     """Exact, synonym or kind-of match of one map label, with the step that matched."""
     low = label.strip().lower()
     canon = canonical_labels(label)
-    if low in nouns or low in wanted:
+    if low in nouns or (low in wanted and not nouns):
         return 1.0, f"label '{label}' is the word asked for"
+    if low in wanted:
+        return SYNONYM, f"label '{label}' is a {low}, the kind of the word asked for"
     hit = wanted.intersection(canon)
     if hit:
-        return 1.0, f"label '{label}' is a {sorted(hit)[0]} (synonyms)"
+        return SYNONYM, f"label '{label}' is a {sorted(hit)[0]} (synonyms)"
     kind = next((w for w in sorted(wanted) for c in (low, *canon) if is_kind_of(c, w)), None)
     if kind is not None:
         return HYPONYM, f"a {label} is a kind of {kind} (vocabulary)"
