@@ -86,7 +86,7 @@ def is_verb_here(g: Grammar) -> bool:
 def _open_verb_here(g: Grammar, tok: Tok) -> bool:
     """Whether a verb the vocabulary does not know opens what the speaker wants to do:
     a base form after "I want to" / "I'd like to" / "I need to" or after "(where) can I"
-    / "could we" ("I want to blow my nose", "where can I weigh myself")."""
+    / "could we" ("I want to floss", "where can I weigh myself")."""
     if not (tok.has("overb") and tok.tag == "VB") or g.i < 2:
         return False
     prev, before = g.peek(-1), g.peek(-2)
