@@ -41,6 +41,9 @@ class StoreConfig(_Section):
     jpeg_quality: int = Field(85, ge=10, le=100)
     keyframe_max_side: int = Field(640, ge=32, description="keyframes are downsized to this")
     lock_timeout_s: float = Field(0.0, ge=0.0, description="wait for a busy map before failing")
+    compact_on_finish: bool = Field(
+        True, description="rewrite the map's databases without dead pages when a build ends"
+    )
 
 
 class EmbedderConfig(_Section):

@@ -384,6 +384,23 @@ def import_into_new_map(
     return {"nodes": len(graph), "edges": len(doc.get("edges", [])), "keyframes": len(keyframes)}
 
 
+def compact_map(map_dir: str | Path, config: Config | None = None) -> dict[str, Any]:
+    """Rewrite a map's databases without the pages earlier writes left dead (see
+    :meth:`MapStore.compact`); needs the writer lock. Bytes of each file before and
+    after, and the tables and rows kept."""
+    path = Path(map_dir)
+    with MapStore.open(path, write=True, config=config or Config()) as store:
+        report = store.compact()
+    return {
+        "map": str(path),
+        "before": report.before,
+        "after": report.after,
+        "saved": report.saved,
+        "tables": report.tables,
+        "rows": report.rows,
+    }
+
+
 def build_map(
     dataset: str | Path,
     map_dir: str | Path,
@@ -434,7 +451,10 @@ def build_map(
         mapper = Mapper(store, cfg, session, progress=progress)
         summary = mapper.run(itertools.islice(itertools.chain([first], frames), n_frames))
         pictures = write_bev_pictures(mapper, path)
+        compacted = store.compact() if cfg.store.compact_on_finish else None
     out = summary.to_dict()
     out["map"] = str(path)
+    if compacted is not None:
+        out["compacted"] = {"before": compacted.before, "after": compacted.after}
     out["bev"] = [str(p) for p in pictures]
     return out

@@ -23,6 +23,7 @@ from pathlib import Path
 import kuzu
 import numpy as np
 
+from inherit_sg.store import search as exact_search
 from inherit_sg.store.embeddings import (
     VectorDelta,
     delete_rows,
@@ -34,8 +35,13 @@ from inherit_sg.store.indexes import VECTOR_INDEXES, VectorIndex, ensure_vector_
 from inherit_sg.store.kuzu_graph import KuzuGraph
 from inherit_sg.store.kuzu_util import index_names, rows, run, scalar
 
-INDEX_FORMAT = 1  # bump when this database's layout changes: it is then rebuilt
+INDEX_FORMAT = 2  # bump when this database's layout changes: it is then rebuilt
 META_TABLE = "_IndexMeta"
+_MIRROR = "mirror:"  # meta name prefix of a vector set the mirror holds
+
+
+def _count(conn: kuzu.Connection, table: str) -> int:
+    return int(scalar(conn, f"MATCH (v:{table}) RETURN count(v)") or 0)
 
 
 def graph_generation(conn: kuzu.Connection) -> int:
@@ -92,45 +98,88 @@ class SearchIndex:
     def _set_meta(self, conn: kuzu.Connection, name: str, value: int) -> None:
         run(conn, f"MERGE (m:{META_TABLE} {{name: $n}}) SET m.value = $v", {"n": name, "v": value})
 
-    def apply(self, deltas: Mapping[str, VectorDelta], generation: int) -> None:
-        """Replay one graph write's vector changes, then build missing HNSW indexes."""
+    def _mirrored(self, conn: kuzu.Connection) -> set[str]:
+        """Vector sets this mirror holds (the others are searched exactly)."""
+        found = rows(conn, f"MATCH (m:{META_TABLE}) WHERE m.value = 1 RETURN m.name")
+        return {str(r[0])[len(_MIRROR) :] for r in found if str(r[0]).startswith(_MIRROR)}
+
+    def apply(
+        self,
+        deltas: Mapping[str, VectorDelta],
+        generation: int,
+        graph_conn: kuzu.Connection | None = None,
+    ) -> None:
+        """Replay one graph write's vector changes, then build missing HNSW indexes. A
+        vector set is mirrored only once it holds more than ``exact_search.EXACT_MAX_ROWS`` rows (it
+        is then copied whole from ``graph_conn``); smaller sets are searched exactly
+        over the graph's vectors and cost the mirror nothing."""
         with self.db.transaction() as conn:
+            mirrored = self._mirrored(conn)
             for name, delta in deltas.items():
-                table = VECTOR_INDEXES[name].table
-                delete_rows(conn, table, delta.dropped)
+                spec = VECTOR_INDEXES[name]
+                if name not in mirrored:
+                    if (
+                        graph_conn is None
+                        or _count(graph_conn, spec.table) <= exact_search.EXACT_MAX_ROWS
+                    ):
+                        continue
+                    delta = self._whole(graph_conn, spec, read_digests(graph_conn, spec.table))
+                    delta.dropped = list(read_digests(conn, spec.table))
+                    self._set_meta(conn, _MIRROR + name, 1)
+                delete_rows(conn, spec.table, delta.dropped)
                 for added in delta.added:
-                    insert_rows(conn, table, added)
+                    insert_rows(conn, spec.table, added)
             self._set_meta(conn, "format", INDEX_FORMAT)
             self._set_meta(conn, "generation", generation)
         with self.db.writer() as conn:
             ensure_vector_indexes(conn)
 
-    def resync(self, graph_conn: kuzu.Connection, generation: int) -> int:
-        """Make the mirror equal to the graph's vectors (by digest); returns the number
-        of rows fixed."""
+    def _whole(
+        self, graph_conn: kuzu.Connection, spec: VectorIndex, truth: Mapping[str, str]
+    ) -> VectorDelta:
+        """The rows of ``truth``'s ids, read from the graph, as one delta."""
         import pyarrow as pa
 
+        dim = self.dims[spec.dim_key]
+        delta = VectorDelta()
+        ids_wanted = list(truth)
+        for start in range(0, len(ids_wanted), 20_000):
+            ids, mat = read_vectors(graph_conn, spec, dim, ids_wanted[start : start + 20_000])
+            if ids:
+                vecs = pa.FixedSizeListArray.from_arrays(
+                    pa.array(mat.reshape(-1), type=pa.float32()), dim
+                )
+                digests = [truth[i] for i in ids]
+                delta.added.append(pa.table({"id": ids, "vec": vecs, "digest": digests}))
+        return delta
+
+    def resync(self, graph_conn: kuzu.Connection, generation: int) -> int:
+        """Make the mirror equal to the graph's vectors (by digest) for the vector sets
+        it holds, and empty for the small ones; returns the number of rows fixed."""
         deltas: dict[str, VectorDelta] = {}
         with self.db.snapshot() as conn:
             mirror = {n: read_digests(conn, s.table) for n, s in VECTOR_INDEXES.items()}
+            mirrored = self._mirrored(conn)
         fixed = 0
+        mark: list[str] = []
         for name, spec in VECTOR_INDEXES.items():
             truth = read_digests(graph_conn, spec.table)
             have = mirror[name]
+            if name not in mirrored and len(truth) <= exact_search.EXACT_MAX_ROWS:
+                deltas[name] = VectorDelta(dropped=list(have))  # maps made before the rule
+                fixed += len(have)
+                continue
+            if name not in mirrored:
+                mark.append(name)
             drop = [i for i in have if truth.get(i) != have[i]]
-            add = [i for i in truth if have.get(i) != truth[i]]
+            add = {i: d for i, d in truth.items() if have.get(i) != d}
             fixed += len(drop) + len(add)
-            delta = deltas[name] = VectorDelta(dropped=drop)
-            for start in range(0, len(add), 20_000):
-                ids, mat = read_vectors(
-                    graph_conn, spec, self.dims[spec.dim_key], add[start : start + 20_000]
-                )
-                if ids:
-                    vecs = pa.FixedSizeListArray.from_arrays(
-                        pa.array(mat.reshape(-1), type=pa.float32()), self.dims[spec.dim_key]
-                    )
-                    digests = [truth[i] for i in ids]
-                    delta.added.append(pa.table({"id": ids, "vec": vecs, "digest": digests}))
+            delta = deltas[name] = self._whole(graph_conn, spec, add)
+            delta.dropped = drop
+        if mark:  # marked first: apply then replays their deltas as it does for any held set
+            with self.db.transaction() as conn:
+                for name in mark:
+                    self._set_meta(conn, _MIRROR + name, 1)
         self.apply(deltas, generation)
         return fixed
 

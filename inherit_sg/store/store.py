@@ -29,6 +29,7 @@ from inherit_sg.config import Config
 from inherit_sg.errors import InputError, MapCorruptError, MapError
 from inherit_sg.model import ChangeSet, Edge, Keyframe, Node, SceneGraph, Session
 from inherit_sg.store import graph_read, graph_write, node_write, text_index
+from inherit_sg.store.compact import CompactReport, compact_graph_file, database_size
 from inherit_sg.store.embeddings import VectorDelta
 from inherit_sg.store.indexes import VectorIndex
 from inherit_sg.store.keyframes import KeyframeBlobs
@@ -205,6 +206,34 @@ class MapStore:
                 remember(self.path, [GRAPH_FILE, INDEX_FILE])
                 self._lock.release()
 
+    def compact(self) -> CompactReport:
+        """Rewrite ``graph.kuzu`` without the pages earlier writes left dead and build
+        ``index.kuzu`` afresh (see :mod:`~inherit_sg.store.compact`), keeping the writer
+        lock throughout; the store stays open. Nothing is lost: the rewrite replaces the
+        graph only when every table holds the same rows."""
+        if not self.writable:
+            raise MapError(f"map {self.path} is open read-only; compacting needs write=True")
+        self._refresh_text()
+        before = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
+        if self._index is not None:
+            self._index.close()
+            self._index = None
+        graph, self._graph = self._graph, None
+        assert graph is not None
+        graph.close()
+        try:
+            done = compact_graph_file(self.path / GRAPH_FILE)
+            for name in (INDEX_FILE, INDEX_FILE + ".wal"):
+                (self.path / name).unlink(missing_ok=True)  # derived: built again below
+        finally:
+            self._graph = open_graph(self.path, self.info, write=True)
+            self._index = open_index(self.path, self.info, write=True)
+            self._index_ok = False
+            self._check_index()
+            self._refresh_text()
+        after = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
+        return CompactReport(before, after, done.tables, done.rows)
+
     def __enter__(self) -> MapStore:
         return self
 
@@ -278,7 +307,7 @@ class MapStore:
         if self._index is None:
             return
         try:
-            self._index.apply(tx.deltas, graph_generation(tx.conn))
+            self._index.apply(tx.deltas, graph_generation(tx.conn), tx.conn)
         except RuntimeError as exc:
             self._index_ok = False
             log.warning(
@@ -489,7 +518,7 @@ class MapStore:
                     stale = {t for t in text_index.TEXT_INDEXES if graph_read.count(conn, t)}
                 else:
                     with index.db.snapshot() as iconn:
-                        stale = text_index.stale_tables(conn, iconn)
+                        stale = text_index.stale_tables(conn, iconn, upgrade=self.writable)
             if not stale:
                 return
             if not self.writable or index is None:
@@ -499,8 +528,7 @@ class MapStore:
                     "once for writing to rebuild it"
                 )
             with self._g().writer() as conn, index.db.writer() as iconn:
-                for table in sorted(stale):
-                    text_index.rebuild(conn, iconn, table)
+                text_index.rebuild(conn, iconn)
 
     def keyframe_search(self, vector: Sequence[float] | np.ndarray, k: int = 10) -> Hits:
         """(keyframe id, cosine distance) of the nearest keyframe global features."""

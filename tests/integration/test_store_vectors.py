@@ -13,6 +13,7 @@ from inherit_sg.errors import InputError, MapError
 from inherit_sg.model import AreaNode, Layer, ObjectNode, make_id
 from inherit_sg.store import MapStore
 from inherit_sg.store import search as search_mod
+from inherit_sg.store.indexes import VECTOR_INDEXES
 from tests.integration.store_data import make_object
 
 
@@ -154,6 +155,7 @@ def test_search_index_is_derived_and_rebuilt(
     with MapStore.open(path, write=True) as store:  # a writer rebuilds it from the graph
         assert store.stats().bytes_index > 0
     with MapStore.open(path) as store:
+        assert store._index is not None and store._index.has_hnsw(VECTOR_INDEXES["object_visual"])
         assert store.vector_search("object_visual", q, k=1)[0][0] == objs[5].id  # type: ignore[arg-type]
         assert {h[0] for h in store.text_search("Object", "chair", k=100)} == {
             o.id for o in objs if o.label == "chair"
