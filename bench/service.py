@@ -12,8 +12,11 @@ fed the house's rendered frames (``POST /v1/maps/{map}/sessions`` … ``/frames`
 finished at the end. The mapping phase is skipped with a note when the server has no live
 session routes.
 
+A third phase serves the same map from several processes (``serve --workers N``,
+read-only; ``--workers 2`` by default) and measures the idle load again.
+
 Run: ``python bench/service.py [--seed 201] [--clients 1,4,16] [--seconds 5] [--fps 5]
-[--frames 60] [--out bench/results/service.json]``
+[--frames 60] [--workers 2] [--out bench/results/service.json]``
 """
 
 from __future__ import annotations
@@ -49,8 +52,9 @@ def free_port() -> int:
         return int(sock.getsockname()[1])
 
 
-def start_server(map_dir: Path, port: int, log: Path) -> subprocess.Popen[bytes]:
-    """``inherit-sg serve`` in a child process; returns once ``/readyz`` answers 200."""
+def start_server(map_dir: Path, port: int, log: Path, workers: int = 1) -> subprocess.Popen[bytes]:
+    """``inherit-sg serve`` (``--workers``) in a child process; returns once ``/readyz``
+    answers 200."""
     cmd = [
         sys.executable,
         "-c",
@@ -62,6 +66,8 @@ def start_server(map_dir: Path, port: int, log: Path) -> subprocess.Popen[bytes]
         "127.0.0.1",
         "--port",
         str(port),
+        "--workers",
+        str(workers),
     ]
     with log.open("wb") as out:
         proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, cwd=ROOT)
@@ -225,6 +231,12 @@ def print_table(results: dict[str, Any]) -> None:
                 f"{phase:8} {r['clients']:>7} {r['requests']:>6} {r['errors']:>4} "
                 f"{r['qps']:>8.2f} {r['p50_ms']!s:>8} {r['p99_ms']!s:>8}"
             )
+    for count, data in results.get("workers", {}).items():
+        for r in data["levels"]:
+            print(
+                f"{count + ' proc':8} {r['clients']:>7} {r['requests']:>6} {r['errors']:>4} "
+                f"{r['qps']:>8.2f} {r['p50_ms']!s:>8} {r['p99_ms']!s:>8}"
+            )
     if "frames" in results["mapping"]:
         m = results["mapping"]
         print(f"frames while mapping: {m['frames']} ({m['frames_per_s']} accepted/s)")
@@ -238,9 +250,16 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=5.0)
     parser.add_argument("--fps", type=float, default=5.0, help="live frames per second (max)")
     parser.add_argument("--frames", type=int, default=60, help="frames rendered for the walk")
+    parser.add_argument(
+        "--workers",
+        default="2",
+        help="server process counts to measure besides one (idle phase only: several "
+        "processes serve read-only); empty for none",
+    )
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "service.json")
     args = parser.parse_args()
     args.clients = [int(c) for c in args.clients.split(",")]
+    args.workers = [int(w) for w in args.workers.split(",") if w.strip() and int(w) > 1]
 
     with tempfile.TemporaryDirectory(prefix="bench-service-") as tmp:
         work = Path(tmp)
@@ -272,6 +291,19 @@ def main() -> None:
         finally:
             server.terminate()
             server.wait(timeout=30)
+        results["workers"] = {}
+        for count in args.workers:
+            port = free_port()
+            server = start_server(map_dir, port, work / f"server-{count}.log", count)
+            base = f"http://127.0.0.1:{port}"
+            try:
+                for _ in range(count):  # each process keeps its own phrase cache
+                    warm_up(base, texts)
+                levels = [query_load(base, texts, n, args.seconds) for n in args.clients]
+                results["workers"][str(count)] = {"levels": levels}
+            finally:
+                server.terminate()
+                server.wait(timeout=30)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps({"service": results}, indent=2) + "\n", encoding="utf-8")
     print_table(results)

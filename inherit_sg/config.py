@@ -127,6 +127,13 @@ class ServiceConfig(_Section):
     cypher_timeout_s: float = Field(
         10.0, gt=0, le=3600, description="default time limit of a Cypher request"
     )
+    workers: int = Field(
+        1,
+        ge=1,
+        le=64,
+        description="server processes; with more than one, maps are served read-only "
+        "(no live sessions) and without conversations (their history lives in one process)",
+    )
 
 
 class GeometryConfig(_Section):

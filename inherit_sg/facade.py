@@ -341,6 +341,7 @@ def import_into_new_map(
         graph = spark_dsg_to_graph(src, names)
         with MapStore.create(map_dir, cfg) as store:
             store.write_changes(graph)
+            _compact_if_asked(store, cfg)
         return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
     if fmt == "scene":
         from inherit_sg.embed import get_text_embedder
@@ -354,6 +355,7 @@ def import_into_new_map(
         embed_nodes(graph, embedder)
         with MapStore.create(map_dir, cfg) as store:
             store.write_changes(graph)
+            _compact_if_asked(store, cfg)
         return {"nodes": len(graph), "edges": sum(1 for _ in graph.edges()), "keyframes": 0}
     if fmt != "json":
         raise InputError(f"unknown import format {fmt!r}: use json, spark-dsg or scene")
@@ -381,7 +383,15 @@ def import_into_new_map(
         if keyframes:
             store.add_keyframes(keyframes)
         store.write_changes(graph)
+        _compact_if_asked(store, cfg)
     return {"nodes": len(graph), "edges": len(doc.get("edges", [])), "keyframes": len(keyframes)}
+
+
+def _compact_if_asked(store: MapStore, cfg: Config) -> None:
+    """A map just written in one go leaves dead pages too: compact it when the config
+    asks (store.compact_on_finish, on by default)."""
+    if cfg.store.compact_on_finish:
+        store.compact()
 
 
 def compact_map(map_dir: str | Path, config: Config | None = None) -> dict[str, Any]:

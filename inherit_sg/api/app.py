@@ -22,6 +22,7 @@ from inherit_sg.api.models import CypherRequest, CypherResponse, HealthResponse,
 from inherit_sg.api.state import Registry, resolve_maps, served_map
 from inherit_sg.api.views import FloorQ, LabelQ, Limit, Offset, RoomQ
 from inherit_sg.config import Config, load_config
+from inherit_sg.errors import InputError
 from inherit_sg.json_values import jsonable
 from inherit_sg.reads.models import MapStats, ObjectDetail, ObjectPage
 from inherit_sg.retrieval.result_models import QueryResponse
@@ -81,6 +82,12 @@ def create_app(maps: dict[str, Path] | Path, config: Config | None = None) -> Fa
         """Answer a natural-language request (the query result JSON of the CLI)."""
         served = served_map(request, map)
         registry: Registry = request.app.state.registry
+        if body.conversation_id is not None and cfg.service.workers > 1:
+            raise InputError(
+                f"conversation_id needs a server with one process (serve --workers 1): "
+                f"this one runs {cfg.service.workers}, and a conversation's history lives "
+                "in the process that answered it"
+            )
         conv = (
             registry.conversation(map, body.conversation_id)
             if body.conversation_id is not None

@@ -103,6 +103,11 @@ class ServedMap:
     ) -> LiveSession:
         """Reopen the map for writing and start a live session on it; MapError (409)
         while another one runs, MapLockedError (423) when another process writes."""
+        if self.config.service.workers > 1:
+            raise MapError(
+                f"map {self.name!r} is served read-only by {self.config.service.workers} "
+                "processes: live sessions need a server with one process (serve --workers 1)"
+            )
         with self._live_lock:
             if self.live is not None:
                 raise MapError(f"map {self.name!r} already has a live session ({self.live.id})")

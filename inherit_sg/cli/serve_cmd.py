@@ -71,6 +71,15 @@ def serve(
             help="Serve on a non-loopback host without API keys (refused otherwise).",
         ),
     ] = False,
+    workers: Annotated[
+        int | None,
+        typer.Option(
+            min=1,
+            max=64,
+            help="Server processes (default: service.workers, 1). More than one serves "
+            "the maps read-only: no live sessions, no conversations.",
+        ),
+    ] = None,
 ) -> None:
     """Serve maps at http://HOST:PORT/v1/maps/{name} (name = directory name). On a host
     other machines can reach, API keys are required unless --insecure is given."""
@@ -85,9 +94,32 @@ def serve(
     exposed = exposure_warning(bind_host, cfg)
     if exposed is not None and not insecure:
         raise InputError(f"refusing to start: {exposed} (or pass --insecure)")
-    app = create_app(map_dir, cfg)
+    if workers is not None:
+        cfg = cfg.model_copy(
+            update={"service": cfg.service.model_copy(update={"workers": workers})}
+        )
+    processes = cfg.service.workers
+    app = create_app(map_dir, cfg)  # checks the maps before any worker starts
     if exposed is not None:
         typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
     shown = f"[{bind_host}]" if ":" in bind_host else bind_host
-    typer.echo(f"serving {map_dir} at http://{shown}:{bind_port}/v1/maps/")
-    uvicorn.run(app, host=bind_host, port=bind_port, log_level="info")
+    typer.echo(
+        f"serving {map_dir} at http://{shown}:{bind_port}/v1/maps/"
+        + (f" ({processes} processes, read-only)" if processes > 1 else "")
+    )
+    if processes == 1:
+        uvicorn.run(app, host=bind_host, port=bind_port, log_level="info")
+        return
+    import os
+
+    from inherit_sg.api.workers import worker_environment
+
+    os.environ.update(worker_environment(map_dir.absolute(), cfg))
+    uvicorn.run(
+        "inherit_sg.api.workers:app_from_environment",
+        factory=True,
+        workers=processes,
+        host=bind_host,
+        port=bind_port,
+        log_level="info",
+    )

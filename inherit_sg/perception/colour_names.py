@@ -14,6 +14,8 @@ quartile, so a shiny black lamp is named black rather than grey.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from inherit_sg.vocab import colours as colour_vocab
@@ -150,11 +152,15 @@ def exposure_gain(rgb: np.ndarray, mask: np.ndarray, max_pixels: int = 8192) -> 
     """How much to brighten an object seen in ``rgb`` so that the frame's brightest
     surfaces (95th percentile outside ``mask``: walls, ceiling) read as white: a white
     object in a dim room then stays white instead of turning grey."""
-    px = rgb[~np.asarray(mask, dtype=bool)]
+    m = np.asarray(mask, dtype=bool)
+    # a regular grid of about max_pixels pixels first: selecting the whole frame's
+    # unmasked pixels and thinning them afterwards copied the frame for every object
+    step = max(1, math.isqrt(m.size // max(max_pixels, 1)))
+    px = rgb[::step, ::step][~m[::step, ::step]]
     if px.shape[0] == 0:
-        return 1.0
-    if px.shape[0] > max_pixels:
-        px = px[:: -(-px.shape[0] // max_pixels)]
+        px = rgb[~m]
+        if px.shape[0] == 0:
+            return 1.0
     ref = float(np.percentile(srgb_to_linear(px) @ _LUMA, 95))
     return float(np.clip(WHITE_LUMA / max(ref, 1e-6), 1.0, MAX_GAIN))
 

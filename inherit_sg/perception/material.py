@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from scipy import ndimage
 
 from inherit_sg.perception.colour_names import srgb_to_linear
@@ -98,10 +99,21 @@ def _autocorr_min(res: np.ndarray, inside: np.ndarray) -> float:
     return low
 
 
-def texture_residual(lum: np.ndarray, size: int) -> np.ndarray:
-    """Luminance over its local median in a ``size`` window, minus 1: the surface's own
-    pattern (and sensor noise), without shading or the steps between lit faces."""
-    return lum / np.maximum(ndimage.median_filter(lum, size=size), 1e-6) - 1.0
+def texture_residual(lum: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
+    """Luminance over its local median in a ``size`` window, minus 1, at the pixels of
+    ``where`` (in their row-major order): the surface's own pattern (and sensor noise),
+    without shading or the steps between lit faces.
+
+    The same values as ``scipy.ndimage.median_filter`` (its default "reflect" border,
+    numpy's "symmetric") gives, but the medians are taken only where they are used: an
+    object's eroded mask covers a fraction of its box, and this was a fifth of the
+    semantic stream's time (3-5x faster, measured on 60x80 to 300x400 crops)."""
+    half = size // 2
+    padded = np.pad(lum, half, mode="symmetric")
+    windows = sliding_window_view(padded, (size, size))[where].reshape(-1, size * size)
+    mid = size * size // 2
+    median = np.partition(windows, mid, axis=1)[:, mid]
+    return lum[where] / np.maximum(median, 1e-6) - 1.0
 
 
 def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
@@ -121,16 +133,17 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
     if n < MIN_PIXELS:
         return None
     lum = srgb_to_linear(rgb[y0:y1, x0:x1]) @ _LUMA
-    wide = texture_residual(lum, WIDE)
-    small = texture_residual(lum, 3)
-    vals = wide[inside]
+    vals = texture_residual(lum, inside, WIDE)
+    small = texture_residual(lum, inside, 3)
     contrast = _robust_spread(vals)
-    fine = _robust_spread(small[inside]) / max(contrast, 1e-6)
+    fine = _robust_spread(small) / max(contrast, 1e-6)
+    centred = np.zeros(lum.shape)
+    centred[inside] = vals - float(np.median(vals))
     return TextureStats(
         pixels=n,
         contrast=contrast,
         fine=fine,
-        periodic=_autocorr_min(wide - float(np.median(vals)), inside),
+        periodic=_autocorr_min(centred, inside),
         flecks=float(np.mean(vals < -0.25)),
         sheen=float(np.mean(vals > 0.35)),
     )
@@ -151,12 +164,11 @@ def frame_noise(
     vals = []
     for y in np.linspace(0, h - rows, bands).astype(int):
         lum = srgb_to_linear(rgb[y : y + rows]) @ _LUMA
-        res = texture_residual(lum, WIDE)
-        keep = np.zeros(res.shape, dtype=bool)
+        keep = np.zeros(lum.shape, dtype=bool)
         keep[2:-2, 2:-2] = True
         if exclude is not None:
             keep &= ~np.asarray(exclude, dtype=bool)[y : y + rows]
-        vals.append(res[keep])
+        vals.append(texture_residual(lum, keep, WIDE))
     v = np.concatenate(vals)
     return _robust_spread(v) if v.size >= MIN_PIXELS else 0.0
 

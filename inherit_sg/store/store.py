@@ -214,13 +214,13 @@ class MapStore:
         if not self.writable:
             raise MapError(f"map {self.path} is open read-only; compacting needs write=True")
         self._refresh_text()
-        before = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
         if self._index is not None:
             self._index.close()
             self._index = None
         graph, self._graph = self._graph, None
         assert graph is not None
-        graph.close()
+        graph.close()  # checkpoints: the sizes are those a closed map would have
+        before = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
         try:
             done = compact_graph_file(self.path / GRAPH_FILE)
             for name in (INDEX_FILE, INDEX_FILE + ".wal"):
