@@ -175,6 +175,8 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("fresh_seeds", RESULTS.parent / "fresh_seeds.json"),
             ("hostile", RESULTS.parent / "hostile.json"),
             ("cypher_isolation", RESULTS.parent / "cypher_isolation.json"),
+            ("performance", RESULTS.parent / "performance.json"),
+            ("service", RESULTS.parent / "service.json"),
         )
         if path.is_file()
     }

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from inherit_sg.benchmark import report, trust
+from inherit_sg.benchmark import performance, report, trust
 from inherit_sg.benchmark import request_sets as request_sets_section
 from inherit_sg.benchmark.tables import table
 
@@ -169,6 +169,16 @@ def render_page(
             "A statement that crashes the database engine costs only itself; from "
             "`bench/results/cypher_isolation.json` (`python bench/cypher_isolation.py`).",
             trust.cypher_isolation_section(sets["cypher_isolation"]),
+        ]
+    if "performance" in sets or "service" in sets:
+        parts += [
+            "## Performance",
+            "Map size, whole build and memory from `bench/results/performance.json` "
+            "(`python bench/performance.py`: house 811, two floors, 640×480, built once as "
+            "shipped and once with `--set store.compact_on_finish=false`, each in its own "
+            "process); REST throughput from `bench/results/service.json` (`python "
+            "bench/service.py`).",
+            performance.performance_section(sets.get("performance"), sets.get("service")),
         ]
     if scale_rows:
         parts += [
