@@ -13,7 +13,7 @@ import os
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -53,6 +53,11 @@ class EmbedderConfig(_Section):
     batch_size: int = Field(64, ge=1)
     cache_size: int = Field(4096, ge=0, description="in-process cache entries")
     device: str = "cpu"
+    backend: Literal["auto", "onnx", "torch"] = Field(
+        "auto",
+        description="auto: the ONNX runtime when the model allows (same vectors, faster, "
+        "no torch in memory; exported once into the cache folder), else sentence-transformers",
+    )
 
 
 class PerceptionConfig(_Section):

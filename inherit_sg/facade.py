@@ -350,7 +350,10 @@ def import_into_new_map(
 
         graph = scene_file_to_graph(src)
         embedder = get_text_embedder(
-            cfg.embedder.model, batch_size=cfg.embedder.batch_size, device=cfg.embedder.device
+            cfg.embedder.model,
+            batch_size=cfg.embedder.batch_size,
+            device=cfg.embedder.device,
+            backend=cfg.embedder.backend,
         )
         embed_nodes(graph, embedder)
         with MapStore.create(map_dir, cfg) as store:

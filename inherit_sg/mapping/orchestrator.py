@@ -52,6 +52,10 @@ log = logging.getLogger(__name__)
 
 
 # How often a producer waiting for room in the keyframe queue checks the worker is alive.
+# A recorded dataset's geometric stream runs ahead of the semantic one by at most this
+# many pending keyframes: enough to keep the semantic worker busy, where a full queue
+# (geometry.queue_capacity, for live bursts) held ~700 MB of frames for nothing.
+BLOCK_AHEAD = 8
 WAIT_CHECK_S = 0.1
 
 
@@ -118,6 +122,7 @@ class Mapper:
             config.embedder.model,
             batch_size=config.embedder.batch_size,
             device=config.embedder.device,
+            backend=config.embedder.backend,
         )
         self.embedder.embed(["warm-up"])  # load the model now, not inside the worker's lock
         self.graph = store.load_graph()
@@ -203,7 +208,7 @@ class Mapper:
         if self.backpressure == "block":
             # wait for the semantic worker to take a keyframe (woken by the queue itself);
             # look up every WAIT_CHECK_S whether the worker is still there to take one
-            while not queue.wait_below(queue.capacity - 1, WAIT_CHECK_S):
+            while not queue.wait_below(min(queue.capacity - 1, BLOCK_AHEAD), WAIT_CHECK_S):
                 if not self._worker.is_alive():
                     break
         t0 = time.perf_counter()

@@ -131,6 +131,7 @@ class QueryEngine:
                 batch_size=cfg.batch_size,
                 cache_size=cfg.cache_size,
                 device=cfg.device,
+                backend=cfg.backend,
             )
         return PhraseSimilarity(self._embedder)
 

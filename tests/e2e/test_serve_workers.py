@@ -8,7 +8,6 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
-from pathlib import Path
 
 import httpx
 import pytest
@@ -26,8 +25,10 @@ def served(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     port = free_port()
     log = (root / "serve.log").open("wb")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "inherit_sg.cli.main", "serve", "--map", str(map_dir)]
-        + ["--port", str(port), "--workers", "2"],
+        [
+            *(sys.executable, "-m", "inherit_sg.cli.main", "serve", "--map", str(map_dir)),
+            *("--port", str(port), "--workers", "2"),
+        ],
         stdout=log,
         stderr=subprocess.STDOUT,
     )
