@@ -320,16 +320,14 @@ def compound_rooms(
         rtype = _room_word(words[0])
         if rtype is None or object_vocab.canonical_label(words[0]) is not None:
             continue
-        return (
-            RoomConstraint(
-                id=f"{con.id}~room",
-                type=rtype,
-                name=rtype,
-                weight=COMPOUND_ROOM_WEIGHT,
-                text=f"a {label} is usually in a {rtype} (the map says only {words[-1]})",
-            ),
-        )
+        why = f"a {label} is usually in a {rtype} (the map says only {words[-1]})"
+        return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
     return ()
+
+
+def _implied_room(con_id: str, rtype: str, weight: float, why: str) -> tuple[Constraint, ...]:
+    """The weak room constraint one constraint implies (id ``<con_id>~room``)."""
+    return (RoomConstraint(id=f"{con_id}~room", type=rtype, name=rtype, weight=weight, text=why),)
 
 
 # Weight of the room a function is usually done in ("wash dishes": a kitchen).
@@ -346,15 +344,8 @@ def usual_rooms(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
         if isinstance(con, FunctionConstraint) and not con.negated:
             rtype = usual_room(con.function)
             if rtype is not None:
-                return (
-                    RoomConstraint(
-                        id=f"{con.id}~room",
-                        type=rtype,
-                        name=rtype,
-                        weight=USUAL_ROOM_WEIGHT,
-                        text=f"'{con.function}' is usually done in a {rtype} (functions.toml)",
-                    ),
-                )
+                why = f"'{con.function}' is usually done in a {rtype} (functions.toml)"
+                return _implied_room(con.id, rtype, USUAL_ROOM_WEIGHT, why)
     return ()
 
 
