@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
     from inherit_sg.retrieval.viewer import ViewerPose
+    from inherit_sg.store.compact import CompactReport
 
 EXPORT_FORMAT = "inherit-sg-map"
 EXPORT_VERSION = 1
@@ -390,11 +391,10 @@ def import_into_new_map(
     return {"nodes": len(graph), "edges": len(doc.get("edges", [])), "keyframes": len(keyframes)}
 
 
-def _compact_if_asked(store: MapStore, cfg: Config) -> None:
-    """A map just written in one go leaves dead pages too: compact it when the config
-    asks (store.compact_on_finish, on by default)."""
-    if cfg.store.compact_on_finish:
-        store.compact()
+def _compact_if_asked(store: MapStore, cfg: Config) -> CompactReport | None:
+    """A finished build or import leaves dead pages: compact the map when the config
+    asks (store.compact_on_finish, on by default); what it did, else None."""
+    return store.compact() if cfg.store.compact_on_finish else None
 
 
 def compact_map(map_dir: str | Path, config: Config | None = None) -> dict[str, Any]:
@@ -464,7 +464,7 @@ def build_map(
         mapper = Mapper(store, cfg, session, progress=progress)
         summary = mapper.run(itertools.islice(itertools.chain([first], frames), n_frames))
         pictures = write_bev_pictures(mapper, path)
-        compacted = store.compact() if cfg.store.compact_on_finish else None
+        compacted = _compact_if_asked(store, cfg)
     out = summary.to_dict()
     out["map"] = str(path)
     if compacted is not None:

@@ -152,7 +152,7 @@ class SentenceTransformerEmbedder:
                 elif text not in missing:
                     missing.append(text)
         if missing:
-            vectors = self._encode(missing).astype(np.float32)
+            vectors = self._encode(missing)
             fresh = dict(zip(missing, vectors, strict=True))
             with self._lock:
                 for text, vec in fresh.items():

@@ -157,17 +157,23 @@ def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float,
     return None
 
 
-def _sibling(label: str, wanted: set[str]) -> tuple[float, str] | None:
-    """A map label naming another kind of the asked kind's parent ("sofa chair" and
-    "dining chair" are both chairs); the parent must be a kind itself, not a broad class
-    such as furniture or seat."""
-    low = label.strip().lower()
-    forms = (low, *canonical_labels(label))
+def _parent_kinds(wanted: set[str]) -> dict[str, str]:
+    """Each asked kind's parent, when that parent is a kind itself (not a broad class
+    such as furniture or seat)."""
+    kinds = object_vocab.vocabulary().kinds
+    out: dict[str, str] = {}
     for want in sorted(wanted):
         chain = object_vocab.is_a(want)
-        parent = chain[0] if chain else None
-        if parent is None or parent not in object_vocab.vocabulary().kinds:
-            continue
+        if chain and chain[0] in kinds:
+            out[want] = chain[0]
+    return out
+
+
+def _sibling(label: str, parents: dict[str, str]) -> tuple[float, str] | None:
+    """A map label naming another kind of an asked kind's parent (``parents``, from
+    :func:`_parent_kinds`): "sofa chair" and "dining chair" are both chairs."""
+    forms = (label.strip().lower(), *canonical_labels(label))
+    for want, parent in parents.items():
         if any(f != want and f != parent and is_kind_of(f, parent) for f in forms):
             return SIBLING, f"a {label} and a {want} are both kinds of {parent} (vocabulary)"
     return None
@@ -194,11 +200,12 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
             out[label] = found
     queries = [q for q in dict.fromkeys([*con.labels, con.noun]) if q]
     _semantic(out, queries, labels, labels, sim, LABEL_SEMANTIC_MAX)
-    if not con.negated:  # "not a dining chair" says nothing against an armchair
+    parents = {} if con.negated else _parent_kinds(wanted)
+    if parents:  # "not a dining chair" says nothing against an armchair
         for label in labels:
             if label in general:
                 continue
-            found = _sibling(label, wanted)
+            found = _sibling(label, parents)
             if found is not None and (label not in out or out[label][0] < found[0]):
                 out[label] = found
     if general and queries:

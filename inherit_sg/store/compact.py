@@ -29,6 +29,7 @@ import kuzu
 
 from inherit_sg.errors import MapError
 from inherit_sg.store.kuzu_util import rows, run
+from inherit_sg.store.stats import kuzu_bytes
 
 log = logging.getLogger(__name__)
 
@@ -90,10 +91,8 @@ def _digests_of(file: Path) -> dict[str, TableDigest]:
 
 @dataclass(frozen=True)
 class CompactResult:
-    """What rewriting one database file did."""
+    """What rewriting one database file kept."""
 
-    bytes_before: int
-    bytes_after: int
     tables: int
     rows: int
 
@@ -114,17 +113,11 @@ class CompactReport:
         return sum(self.before.values()) - sum(self.after.values())
 
 
-def database_size(file: Path) -> int:
-    """Bytes of a Kuzu database file and its write-ahead log (0 when missing)."""
-    wal = file.with_name(file.name + ".wal")
-    return sum(f.stat().st_size for f in (file, wal) if f.exists())
-
-
 def compact_graph_file(file: Path) -> CompactResult:
     """Rewrite the Kuzu database ``file`` by export and import, check that every table
     holds the same rows, and replace ``file`` with the rewrite. On any failure the
     original is left as it was and :class:`MapError` says why."""
-    before = database_size(file)
+    before = kuzu_bytes(file)
     work = Path(tempfile.mkdtemp(prefix=".compact-", dir=file.parent))
     new = work / file.name
     try:
@@ -143,7 +136,7 @@ def compact_graph_file(file: Path) -> CompactResult:
             run(conn, "CHECKPOINT")
         finally:
             db.close()
-        if database_size(new) != new.stat().st_size:
+        if kuzu_bytes(new) != new.stat().st_size:
             raise MapError(f"compacting {file} was abandoned: the rewrite kept a log")
         fresh = _digests_of(new)
         if fresh != old:
@@ -157,10 +150,10 @@ def compact_graph_file(file: Path) -> CompactResult:
         raise MapError(f"compacting {file} failed ({exc}); the map is unchanged") from None
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    after = database_size(file)
+    after = kuzu_bytes(file)
     total = sum(d.rows for d in old.values())
     log.info("compacted %s: %.1f MB -> %.1f MB", file, before / 1e6, after / 1e6)
-    return CompactResult(before, after, len(old), total)
+    return CompactResult(len(old), total)
 
 
 def _replace(file: Path, new: Path) -> None:

@@ -31,6 +31,7 @@ from inherit_sg.store.embeddings import (
     read_digests,
     read_vectors,
 )
+from inherit_sg.store.graph_read import count
 from inherit_sg.store.indexes import VECTOR_INDEXES, VectorIndex, ensure_vector_indexes
 from inherit_sg.store.kuzu_graph import KuzuGraph
 from inherit_sg.store.kuzu_util import index_names, rows, run, scalar
@@ -38,10 +39,6 @@ from inherit_sg.store.kuzu_util import index_names, rows, run, scalar
 INDEX_FORMAT = 2  # bump when this database's layout changes: it is then rebuilt
 META_TABLE = "_IndexMeta"
 _MIRROR = "mirror:"  # meta name prefix of a vector set the mirror holds
-
-
-def _count(conn: kuzu.Connection, table: str) -> int:
-    return int(scalar(conn, f"MATCH (v:{table}) RETURN count(v)") or 0)
 
 
 def graph_generation(conn: kuzu.Connection) -> int:
@@ -110,9 +107,9 @@ class SearchIndex:
         graph_conn: kuzu.Connection | None = None,
     ) -> None:
         """Replay one graph write's vector changes, then build missing HNSW indexes. A
-        vector set is mirrored only once it holds more than ``exact_search.EXACT_MAX_ROWS`` rows (it
-        is then copied whole from ``graph_conn``); smaller sets are searched exactly
-        over the graph's vectors and cost the mirror nothing."""
+        vector set is mirrored only once it holds more than ``EXACT_MAX_ROWS`` rows (it is
+        then copied whole from ``graph_conn``); smaller sets are searched exactly over
+        the graph's vectors and cost the mirror nothing."""
         with self.db.transaction() as conn:
             mirrored = self._mirrored(conn)
             for name, delta in deltas.items():
@@ -120,7 +117,7 @@ class SearchIndex:
                 if name not in mirrored:
                     if (
                         graph_conn is None
-                        or _count(graph_conn, spec.table) <= exact_search.EXACT_MAX_ROWS
+                        or count(graph_conn, spec.table) <= exact_search.EXACT_MAX_ROWS
                     ):
                         continue
                     delta = self._whole(graph_conn, spec, read_digests(graph_conn, spec.table))

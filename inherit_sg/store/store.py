@@ -29,7 +29,7 @@ from inherit_sg.config import Config
 from inherit_sg.errors import InputError, MapCorruptError, MapError
 from inherit_sg.model import ChangeSet, Edge, Keyframe, Node, SceneGraph, Session
 from inherit_sg.store import graph_read, graph_write, node_write, text_index
-from inherit_sg.store.compact import CompactReport, compact_graph_file, database_size
+from inherit_sg.store.compact import CompactReport, compact_graph_file
 from inherit_sg.store.embeddings import VectorDelta
 from inherit_sg.store.indexes import VectorIndex
 from inherit_sg.store.keyframes import KeyframeBlobs
@@ -50,12 +50,13 @@ from inherit_sg.store.migrations import latest_version
 from inherit_sg.store.open_probe import crashing_files, remember
 from inherit_sg.store.search import VectorSearcher
 from inherit_sg.store.search_index import SearchIndex, bump_generation, graph_generation
-from inherit_sg.store.stats import MapStats, compute_stats
+from inherit_sg.store.stats import MapStats, compute_stats, kuzu_bytes
 from inherit_sg.store.store_open import (
     CREATE_LEFTOVERS,
     clear_leftovers,
     open_graph,
     open_index,
+    remove_database,
 )
 
 Hits = list[tuple[str, float]]
@@ -220,18 +221,17 @@ class MapStore:
         graph, self._graph = self._graph, None
         assert graph is not None
         graph.close()  # checkpoints: the sizes are those a closed map would have
-        before = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
+        before = {n: kuzu_bytes(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
         try:
             done = compact_graph_file(self.path / GRAPH_FILE)
-            for name in (INDEX_FILE, INDEX_FILE + ".wal"):
-                (self.path / name).unlink(missing_ok=True)  # derived: built again below
+            remove_database(self.path / INDEX_FILE)  # derived: built again below
         finally:
             self._graph = open_graph(self.path, self.info, write=True)
             self._index = open_index(self.path, self.info, write=True)
             self._index_ok = False
             self._check_index()
             self._refresh_text()
-        after = {n: database_size(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
+        after = {n: kuzu_bytes(self.path / n) for n in (GRAPH_FILE, INDEX_FILE)}
         return CompactReport(before, after, done.tables, done.rows)
 
     def __enter__(self) -> MapStore:

@@ -3,7 +3,6 @@ the search index database, both with clear errors for locked or broken maps."""
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import shutil
 from pathlib import Path
@@ -150,7 +149,11 @@ def open_index(
     except _KUZU_OPEN_ERRORS as exc:
         _raise_if_locked(root, exc)
         log.warning("map %s: %s is damaged (%s); rebuilding it", root, INDEX_FILE, exc)
-        for path in (file, file.with_name(file.name + ".wal")):
-            with contextlib.suppress(FileNotFoundError):
-                path.unlink()
+        remove_database(file)
         return SearchIndex(file, info.dims, read_only=False)
+
+
+def remove_database(file: Path) -> None:
+    """Delete a Kuzu database file and its write-ahead log (either may be missing)."""
+    for path in (file, file.with_name(file.name + ".wal")):
+        path.unlink(missing_ok=True)
