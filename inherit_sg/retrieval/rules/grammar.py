@@ -396,6 +396,8 @@ class Grammar(Cursor):
                 break  # "the left one if you're facing the headboard": a viewpoint
             if tok.has("and") and after_be and self.at("colour", "adj", "material", "be", k=1):
                 pass  # "a chair that is red and made of wood"
+            elif tok.has("and") and after_be and self.at("have", k=1) and self.np_start(2):
+                pass  # "the chair is grey and has four legs": its parts, not a new errand
             elif tok.has("comma", "and", "or", "but", "than", "sub"):
                 break
             elif tok.has("be") and tok.has("fverb") and self.at("modal", k=-1):
@@ -417,6 +419,7 @@ class Grammar(Cursor):
                 pass
             elif tok.has("neg"):
                 self.negate()
+                after_be = True  # "the chair not pushed in" = "… that is not pushed in"
             elif tok.has("emph", "hedge"):
                 self.stress("emph" if tok.has("emph") else "hedge")
                 after_be = True
@@ -572,9 +575,9 @@ class Grammar(Cursor):
                 np.places.append(self._room(sub, False, f"of {sub.noun}", None))
             elif sub is not None and sub.kind == OBJECT and self._picks_from(np):
                 self._partitive(np, sub)  # "the larger of the two toolboxes"
-            elif sub is not None:
-                np.words += ["of", *sub.words]
-            return True
+            elif sub is not None and sub.words:
+                np.words += ["of", *sub.words]  # "a cup of tea", "the bag of chips"
+            return True  # "the middle monitor of the three": the group, counted
         return False
 
     def _leads_to(self, np: NP) -> bool:
@@ -884,7 +887,10 @@ class Grammar(Cursor):
 
     def parse_with(self, np: NP, *, landmark: bool = False) -> bool:
         """ "with X" / "without X" / "with no X next to it" / "that has X" on ``np``; on
-        a room that places something else (``landmark``), "with X" says which room."""
+        a room that places something else (``landmark``), "with X" says which room.
+        False (nothing consumed) when X is a part a room cannot have: "the chair in the
+        room without arms" is about the chair."""
+        snap = self.state()
         tok = self.advance()
         neg = self.take_neg() != tok.has("without")
         if self.at("neg"):
@@ -898,6 +904,9 @@ class Grammar(Cursor):
             self.with_depth -= 1
         if lm is None:
             return True
+        if np.kind in (ROOM, AREA, GENERIC_AREA) and self._is_part(np, lm):
+            self.restore(snap)
+            return False
         if landmark and np.kind == ROOM and not neg and not np.beside and (lm.noun or lm.labels):
             np.beside = lm.noun or lm.labels[0]  # "the bathroom with the shower": which one
             np.places += lm.places
