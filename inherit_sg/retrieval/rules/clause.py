@@ -819,6 +819,14 @@ class ClauseParser(Grammar):
             head.words += ["or", *np.words]
             head.constraints += np.constraints
             head.plural = True
+        elif head.kind == ROOM and np.kind == OBJECT and np.labels and self.toks[0].has("wh"):
+            # "which room is the piano in": the room that holds it
+            head.constraints.append(
+                RelationConstraint(
+                    predicate="contains", landmark=np.landmark(), negated=neg,
+                    weight=self.weight("relation"), text=f"holds {np.noun}",
+                )
+            )  # fmt: skip
         elif head.kind == ANAPHOR:
             head.constraints += np.constraints
         elif np.kind == ANAPHOR and not np.plural and not neg:

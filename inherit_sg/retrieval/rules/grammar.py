@@ -563,8 +563,22 @@ class Grammar(Cursor):
                 np.known = sub.known
             return True
         if tok.has("of") and self.np_start(1):
+            before = self.peek(-1)
             self.advance()
             sub = self.parse_np(landmark=True)
+            if (
+                sub is not None
+                and sub.kind == OBJECT
+                and before is not None
+                and before.text == "full"
+            ):
+                np.constraints.append(  # "a bookshelf full of books": what it holds
+                    RelationConstraint(
+                        predicate="with", landmark=sub.landmark(), weight=self.weight("relation"),
+                        text=f"full of {sub.noun}",
+                    )
+                )  # fmt: skip
+                return True
             position = lexicon().position_nouns.get(" ".join(np.words[-2:])) or (
                 lexicon().position_nouns.get(np.words[-1]) if np.words else None
             )

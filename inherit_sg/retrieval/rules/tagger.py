@@ -203,7 +203,12 @@ def _grammar(tok: Tok, word: Word, first: bool) -> None:
         tok.tags.setdefault("modal", text)
     if text in _QUESTION_WORDS and (word.tag.startswith("W") or first):
         tok.tags.setdefault("wh", text)
-    if text in _RELATIVE_WORDS and (word.tag in _RELATIVE_TAGS or text == "that"):
+    opens_question = first and text in _QUESTION_WORDS  # "which room is the piano in"
+    if (
+        text in _RELATIVE_WORDS
+        and (word.tag in _RELATIVE_TAGS or text == "that")
+        and not opens_question
+    ):
         tok.tags.setdefault("rel", text)
     if word.pos == "DET" and text not in lx.anaphors and "det" not in tok.tags:
         tok.tags["det"] = text
