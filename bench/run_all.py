@@ -177,6 +177,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("cypher_isolation", RESULTS.parent / "cypher_isolation.json"),
             ("performance", RESULTS.parent / "performance.json"),
             ("service", RESULTS.parent / "service.json"),
+            ("gpu_adapters", RESULTS.parent / "gpu_adapters.json"),
         )
         if path.is_file()
     }

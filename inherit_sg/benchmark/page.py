@@ -7,6 +7,7 @@ from typing import Any
 
 from inherit_sg.benchmark import performance, report, trust
 from inherit_sg.benchmark import request_sets as request_sets_section
+from inherit_sg.benchmark.gpu_adapters import gpu_adapters_section
 from inherit_sg.benchmark.tables import table
 
 
@@ -41,7 +42,8 @@ def render_page(
     """Markdown of the benchmark page; ``images`` maps figure names ("accuracy",
     "latency_scale", "storage") to paths relative to the page; ``request_sets`` holds the
     results of ``bench/parse.py`` ("parse") and ``bench/mp3d_requests.py`` ("mp3d", and
-    "mp3d_independent" for the second set, "mp3d_third" for the blind third)."""
+    "mp3d_independent" for the second set, "mp3d_third" for the blind third) and the other
+    results under ``bench/results`` ("gpu_adapters": ``bench/gpu_adapters.py``)."""
     parts = ["# Benchmarks", preamble.strip()]
     parts += ["## Datasets", datasets_section(docs)]
     parts += [
@@ -179,6 +181,25 @@ def render_page(
             "process); REST throughput from `bench/results/service.json` (`python "
             "bench/service.py`).",
             performance.performance_section(sets.get("performance"), sets.get("service")),
+        ]
+    if "gpu_adapters" in sets:
+        parts += [
+            "## Model adapters on a GPU",
+            "The DINOv3 and SAM3 adapters (`inherit_sg/perception/dinov3.py`, `sam3.py`) "
+            "loaded from `save_pretrained` folders and run on CUDA, from "
+            "`bench/results/gpu_adapters.json` (`python bench/gpu_adapters.py --device "
+            "cuda`). No pretrained weights were at hand: the models are random-init at the "
+            "official sizes (DINOv3 ViT-S/16 and ViT-B/16 with 4 register tokens; SAM3 at "
+            "`Sam3Config()`'s defaults, a 1008² ViT-L/14 backbone, a 24-layer CLIP text "
+            "encoder and 200 queries), so these are speed, memory and plumbing figures, "
+            "not accuracy. Latency is the adapter call end to end, synchronised: "
+            "preprocessing on the CPU (for DINOv3 one square crop per mask, which both "
+            "sizes share), the model, results back as numpy. SAM3's score threshold is "
+            "set so that at most 32 queries pass on any frame (random weights score every "
+            "query alike); mask suppression keeps fewer, as random masks cover most of "
+            "the frame and overlap. Weights: device memory after loading; peak memory: "
+            "the most allocated while the timed calls ran.",
+            gpu_adapters_section(sets["gpu_adapters"]),
         ]
     if scale_rows:
         parts += [

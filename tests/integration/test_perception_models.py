@@ -1,9 +1,13 @@
 """Model adapters on real (tiny, random-init) models saved to tmp dirs: SAM3 and
-DINOv3 through transformers, an ONNX encoder through onnxruntime."""
+DINOv3 through transformers, an ONNX encoder through onnxruntime.
+
+The torch adapters run on the CPU unless ``INHERIT_SG_PERCEPTION__DEVICE`` (the
+``perception.device`` setting's own variable) names another device, e.g. ``cuda``."""
 
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +23,8 @@ from tests.toy_scene import ToyBox, look_at, render_toy_frame, toy_intrinsics
 
 torch = pytest.importorskip("torch")
 transformers = pytest.importorskip("transformers")
+
+DEVICE = os.environ.get("INHERIT_SG_PERCEPTION__DEVICE", "cpu")
 
 BOXES = [
     ToyBox("chair", (-0.6, 2.0, 0.45), (0.5, 0.5, 0.9), (190, 40, 40)),
@@ -98,6 +104,7 @@ def model_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def _config(model_dir: Path, **perception: object) -> Config:
+    perception.setdefault("device", DEVICE)
     return Config(perception=PerceptionConfig(model_dir=str(model_dir), **perception))
 
 
@@ -173,8 +180,8 @@ def test_dinov3_ignores_pixels_outside_the_mask(model_dir: Path, frame: Frame) -
 def test_dinov3_cls_pooling(model_dir: Path, frame: Frame) -> None:
     from inherit_sg.perception.dinov3 import DinoV3Encoder
 
-    cls = DinoV3Encoder(model_dir / "dinov3", input_size=32, pooling="cls")
-    mask = DinoV3Encoder(model_dir / "dinov3", input_size=32, pooling="mask")
+    cls = DinoV3Encoder(model_dir / "dinov3", input_size=32, pooling="cls", device=DEVICE)
+    mask = DinoV3Encoder(model_dir / "dinov3", input_size=32, pooling="mask", device=DEVICE)
     a, b = cls.encode(frame.rgb, _masks(frame)), mask.encode(frame.rgb, _masks(frame))
     assert a.shape == b.shape and not np.allclose(a, b)
 
