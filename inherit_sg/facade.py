@@ -28,6 +28,7 @@ if TYPE_CHECKING:
         ObjectDetail,
         ObjectPage,
         RoomPage,
+        Scene3D,
     )
     from inherit_sg.retrieval.conversation import Conversation
     from inherit_sg.retrieval.result import QueryResult
@@ -167,6 +168,13 @@ class MapService:
         from inherit_sg.reads.hierarchy import build_hierarchy
 
         return build_hierarchy(self)
+
+    def scene3d(self, *, floor_id: str | None = None, near: bool = False) -> Scene3D:
+        """Floors, room footprints, object boxes and graph edges for a 3D view (one
+        floor, or all); ``near`` adds the numerous ``near`` relations."""
+        from inherit_sg.reads.scene3d import build_scene3d
+
+        return build_scene3d(self, floor_id=floor_id, near=near)
 
     def bev_png(self, floor_id: str, *, stored: bool = False) -> tuple[bytes, BevTransform | None]:
         """One floor's bird's-eye view as PNG bytes: drawn from the graph with its

@@ -11,7 +11,7 @@ from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel
 
 from inherit_sg.api.state import Registry, served_map
-from inherit_sg.reads.models import AreaPage, FloorPage, Hierarchy, RoomPage
+from inherit_sg.reads.models import AreaPage, FloorPage, Hierarchy, RoomPage, Scene3D
 
 STATIC = Path(__file__).resolve().parent / "static"
 
@@ -99,6 +99,21 @@ def install(app: FastAPI) -> None:
         served = served_map(request, map)
         with served.lock:
             return served.require().hierarchy()
+
+    @app.get("/v1/maps/{map}/scene3d")
+    def scene3d(
+        request: Request,
+        map: str,
+        floor: FloorQ = None,
+        near: Annotated[
+            bool, Query(description="Also send the 'near' relations (many on a big map).")
+        ] = False,
+    ) -> Scene3D:
+        """Floors, room footprints, object boxes, relations and room connections for the
+        viewer's 3D view (one floor, or all floors)."""
+        served = served_map(request, map)
+        with served.lock:
+            return served.require().scene3d(floor_id=floor, near=near)
 
     @app.get(
         "/v1/maps/{map}/bev.png",

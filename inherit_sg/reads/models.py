@@ -226,3 +226,63 @@ class LiveStatus(BaseModel):
     error: str | None
     summary: dict[str, Any] | None = Field(description="The mapping summary once finished.")
     map: str | None = Field(None, description="The served map's name.")
+
+
+class Scene3DFloor(BaseModel):
+    """A floor of the 3D view with its height range (metres, z up)."""
+
+    id: str
+    label: str
+    level: int | None
+    z_min: float | None
+    z_max: float | None
+
+
+class Scene3DRoom(BaseModel):
+    """A room of the 3D view: its footprint as world (x, y) polygons, largest first."""
+
+    id: str
+    label: str
+    floor_id: str | None
+    position: list[float] | None
+    outlines: list[list[list[float]]] = Field(
+        description="Closed polygons [[x, y], …] of the room's footprint (from its mask)."
+    )
+
+
+class Scene3DObject(BaseModel):
+    """An object of the 3D view: its axis-aligned box."""
+
+    id: str
+    label: str
+    floor_id: str | None
+    room_id: str | None
+    bbox_min: list[float]
+    bbox_max: list[float]
+
+
+class Scene3DRelation(BaseModel):
+    """A spatial relation between two objects (``source`` predicate ``target``)."""
+
+    source: str
+    target: str
+    predicate: str
+
+
+class Scene3DConnection(BaseModel):
+    """Two rooms that connect, with the door's position when known."""
+
+    source: str
+    target: str
+    door: list[float] | None
+
+
+class Scene3D(BaseModel):
+    """Everything the viewer's 3D view draws: floors, room footprints, object boxes,
+    object relations and room connections."""
+
+    floors: list[Scene3DFloor]
+    rooms: list[Scene3DRoom]
+    objects: list[Scene3DObject]
+    relations: list[Scene3DRelation]
+    connections: list[Scene3DConnection]

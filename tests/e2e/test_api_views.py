@@ -30,6 +30,7 @@ from inherit_sg.reads.bev import (
     rasterise,
     render_bev,
 )
+from inherit_sg.reads.scene3d import mask_outlines
 from tests.e2e.oracle_maps import oracle_map
 
 ORACLE, BUILT = "oracle", "built"
@@ -311,7 +312,15 @@ def test_viewer_page_and_routes_not_shadowed(client: TestClient) -> None:
     page = client.get("/")
     assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
     assert '<script src="/static/viewer.js">' in page.text and 'id="query-input"' in page.text
-    for asset, kind in (("viewer.js", "javascript"), ("viewer.css", "text/css")):
+    assert '<script type="module" src="/static/viewer3d.js">' in page.text
+    for asset, kind in (
+        ("viewer.js", "javascript"),
+        ("viewer.css", "text/css"),
+        ("viewer3d.js", "javascript"),
+        ("vendor/three/three.module.js", "javascript"),
+        ("vendor/three/three.core.js", "javascript"),
+        ("vendor/three/addons/controls/OrbitControls.js", "javascript"),
+    ):
         resp = client.get(f"/static/{asset}")
         assert resp.status_code == 200 and kind in resp.headers["content-type"]
     assert client.get("/static/nope.js").status_code == 404
@@ -341,3 +350,60 @@ def test_object_detail_lists_its_keyframes(client: TestClient) -> None:
     first = rows(client, ORACLE, "MATCH (o:Object) RETURN o.id ORDER BY o.id LIMIT 1")[0][0]
     oracle = get_json(client, f"/v1/maps/{ORACLE}/objects/{first}")
     assert oracle["keyframes"] == [] and oracle["best_keyframe"] is None
+
+
+def test_mask_outlines_trace_the_footprint_in_world_metres() -> None:
+    cells = np.zeros((20, 30), dtype=bool)
+    cells[2:12, 5:25] = True  # 2.0 m × 1.0 m at 0.1 m cells
+    cells[15:18, 0:3] = True  # a small second piece on the grid's border
+    mask = RoomMask(origin_x=1.0, origin_y=-2.0, resolution=0.1, cells=cells)
+    big, small = mask_outlines(mask)
+    xs, ys = [p[0] for p in big], [p[1] for p in big]
+    # the outline runs through the centres of the boundary cells
+    assert len(big) == 4
+    assert (min(xs), max(xs)) == pytest.approx((1.55, 3.45))
+    assert (min(ys), max(ys)) == pytest.approx((-1.75, -0.85))
+    assert min(p[0] for p in small) == pytest.approx(1.05)
+    assert mask_outlines(RoomMask(0.0, 0.0, 0.1, np.zeros((4, 4), dtype=bool))) == []
+
+
+def test_scene3d_matches_the_graph(client: TestClient) -> None:
+    scene = get_json(client, f"/v1/maps/{BUILT}/scene3d")
+    objects = rows(client, BUILT, "MATCH (o:Object) RETURN o.id, o.room_id, o.bbox_min")
+    assert {o["id"] for o in scene["objects"]} == {r[0] for r in objects}
+    by_id = {o["id"]: o for o in scene["objects"]}
+    for oid, room_id, lo in objects:
+        assert by_id[oid]["room_id"] == room_id
+        assert by_id[oid]["bbox_min"] == pytest.approx(lo)
+    rooms = rows(client, BUILT, "MATCH (r:Room) RETURN r.id")
+    assert sorted(r["id"] for r in scene["rooms"]) == sorted(r[0] for r in rooms)
+    assert all(r["outlines"] and len(r["outlines"][0]) >= 3 for r in scene["rooms"])
+    # each room's own position lies inside (or on) its largest outline
+    for room in scene["rooms"]:
+        contour = np.array(room["outlines"][0], dtype=np.float32)
+        x, y = room["position"][:2]
+        assert cv2.pointPolygonTest(contour, (x, y), True) > -0.3, room["id"]
+    predicates = {r["predicate"] for r in scene["relations"]}
+    assert predicates and "near" not in predicates
+    edges = rows(
+        client,
+        BUILT,
+        "MATCH (:Object)-[e:RELATION]->(:Object) WHERE e.predicate <> 'near' RETURN count(*)",
+    )
+    assert len(scene["relations"]) == edges[0][0]
+    near = get_json(client, f"/v1/maps/{BUILT}/scene3d?near=true")
+    assert "near" in {r["predicate"] for r in near["relations"]}
+    assert {(c["source"], c["target"]) for c in scene["connections"]} == {
+        (a, b)
+        for a, b in rows(client, BUILT, "MATCH (a:Room)-[:CONNECTS]->(b:Room) RETURN a.id, b.id")
+    }
+    one = get_json(client, f"/v1/maps/{BUILT}/scene3d?floor=floor:0")
+    assert [f["id"] for f in one["floors"]] == ["floor:0"]
+    assert client.get(f"/v1/maps/{BUILT}/scene3d?floor=floor:9").status_code == 404
+    assert client.get(f"/v1/maps/{BUILT}/scene3d?floor=bad%20id").status_code == 400
+    # a room has outlines exactly when it has a mask
+    oracle = get_json(client, f"/v1/maps/{ORACLE}/scene3d")
+    masked = {
+        r[0] for r in rows(client, ORACLE, "MATCH (r:Room) WHERE r.mask IS NOT NULL RETURN r.id")
+    }
+    assert oracle["objects"] and {r["id"] for r in oracle["rooms"] if r["outlines"]} == masked

@@ -1,9 +1,10 @@
 """The web viewer in headless Chromium against a real uvicorn server: enter the API key,
-search, and check that the highlighted answer marker is the API's answer.
+search, and check that the highlighted answer marker is the API's answer, in the plan
+and in the 3D view (three.js on WebGL, rendered by SwiftShader on the CPU).
 
 Needs Debian's ``chromium`` and ``chromium-driver`` (``.ci/run`` installs them); skips only
 when they are missing. The screenshot goes to ``tests/artifacts/viewer.png`` or to the
-folder named by ``INHERIT_SG_ARTIFACTS``.
+folder named by ``INHERIT_SG_ARTIFACTS`` (the 3D view's to ``viewer3d.png`` beside it).
 """
 
 from __future__ import annotations
@@ -84,6 +85,9 @@ def browser() -> Iterator[WebDriver]:
         "--headless=new",
         "--no-sandbox",
         "--disable-gpu",
+        # WebGL for the 3D view on the CPU (SwiftShader): no GPU on CI machines
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
         "--disable-dev-shm-usage",
         "--window-size=1500,950",
     ):
@@ -152,3 +156,67 @@ def test_search_highlights_the_api_answer(browser: WebDriver, base_url: str) -> 
     assert {m.get_attribute("data-id") for m in marked} == others
     shot = artifacts_dir() / "viewer.png"
     assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
+
+
+def _canvas_is_drawn(png: bytes) -> tuple[float, int]:
+    """Spread of the canvas screenshot's pixels and its number of distinct colours."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    pixels = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.float32)
+    colours = len(np.unique(pixels.reshape(-1, 3).astype(np.uint8), axis=0))
+    return float(pixels.std()), colours
+
+
+def test_3d_view_draws_the_floor_and_highlights_the_answer(
+    browser: WebDriver, base_url: str
+) -> None:
+    headers = {"Authorization": f"Bearer {KEY}"}
+    scene = httpx.get(
+        f"{base_url}/v1/maps/{NAME}/scene3d", params={"floor": "floor:0"}, headers=headers
+    ).json()
+    assert scene["objects"] and scene["rooms"] and all(r["outlines"] for r in scene["rooms"])
+    expected = httpx.post(
+        f"{base_url}/v1/maps/{NAME}/query", json={"text": MANY}, headers=headers, timeout=WAIT_S
+    ).json()
+
+    wait = WebDriverWait(browser, WAIT_S)
+    browser.get(f"{base_url}/")
+    key = browser.find_element(By.ID, "key-input")
+    if not key.get_attribute("value"):
+        key.send_keys(KEY + Keys.TAB)
+    wait.until(ec.presence_of_element_located((By.CSS_SELECTOR, "#markers .marker")))
+    browser.find_element(By.CSS_SELECTOR, "#view-switch button[data-view='3d']").click()
+    info = wait.until(
+        lambda d: d.execute_script(
+            "const i = window.isg3d && window.isg3d.info(); return i && i.objects ? i : null;"
+        )
+    )
+    assert info["webgl"], info["error"]
+    assert info["objects"] == len(scene["objects"])
+    assert info["rooms"] == len(scene["rooms"])
+    assert browser.find_element(By.ID, "bev-wrap").get_attribute("hidden") is not None
+
+    box = browser.find_element(By.ID, "query-input")
+    box.clear()
+    box.send_keys(MANY + Keys.ENTER)
+    answer_id = expected["answer"]["id"]
+    info = wait.until(
+        lambda d: d.execute_script(
+            "const i = window.isg3d.info(); return i.answer === arguments[0] ? i : null;",
+            answer_id,
+        )
+    )
+    others = {c["id"] for c in expected["candidates"]} - {answer_id}
+    assert set(info["candidates"]) == others
+    assert info["frames"] > 0 and info["drawCalls"] > 0
+
+    canvas = browser.find_element(By.ID, "canvas3d")
+    png = canvas.screenshot_as_png
+    shot = artifacts_dir() / "viewer3d.png"
+    shot.write_bytes(png)
+    browser.save_screenshot(str(artifacts_dir() / "viewer3d-page.png"))
+    spread, colours = _canvas_is_drawn(png)
+    assert spread > 10 and colours > 50, (spread, colours)  # not a blank canvas

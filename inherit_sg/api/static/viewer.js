@@ -1,5 +1,6 @@
 // INHerit-SG web viewer: map picker, floor tabs with the BEV and object markers, the
-// hierarchy tree, and natural-language search with the answer highlighted on the map.
+// hierarchy tree, and natural-language search with the answer highlighted on the map; a
+// 3D view of the same floor (viewer3d.js) is one click away.
 "use strict";
 
 const state = {
@@ -11,6 +12,7 @@ const state = {
   result: null, // last query result JSON
   selected: null, // object id picked in the tree
   imageUrls: {}, // slot -> object URL to revoke
+  view: "plan", // "plan" (BEV picture) or "3d" (three.js, viewer3d.js)
 };
 
 const $ = (id) => document.getElementById(id);
@@ -139,7 +141,44 @@ async function showFloor(floorId) {
   state.objects = new Map(objects.map((o) => [o.id, o]));
   fitBev();
   renderMarkers();
+  if (state.view === "3d") await show3d();
   setStatus(`${state.map} · ${floorId} · ${objects.length} objects`);
+}
+
+// ------------------------------------------------------------------ 3D view
+// viewer3d.js is an ES module (loaded after this script): wait for it once.
+const view3dReady = new Promise((resolve) => {
+  if (window.isg3d) resolve(window.isg3d);
+  else document.addEventListener("isg3d:ready", () => resolve(window.isg3d), { once: true });
+});
+
+async function show3d() {
+  const isg3d = await view3dReady;
+  if (!state.floor) return;
+  const path = mapPath(`/scene3d?floor=${encodeURIComponent(state.floor)}`);
+  const drawn = await isg3d.show(() => api(path));
+  if (!drawn) setStatus(isg3d.info().error, true);
+  sync3d();
+}
+
+// Tell the 3D view what the plan shows: the answer, the candidates, the selection.
+function sync3d() {
+  if (!window.isg3d || state.view !== "3d") return;
+  const answerId = state.result && state.result.answer ? state.result.answer.id : null;
+  const candidateIds = state.result ? state.result.candidates.map((c) => c.id) : [];
+  window.isg3d.highlight(answerId, candidateIds);
+  window.isg3d.select(state.selected);
+}
+
+async function setView(name) {
+  state.view = name;
+  for (const b of $("view-switch").children) {
+    b.setAttribute("aria-pressed", String(b.dataset.view === name));
+  }
+  $("bev-wrap").hidden = name !== "plan";
+  $("view3d").hidden = name !== "3d";
+  if (name === "3d") await show3d();
+  else fitBev();
 }
 
 // Fit the BEV into the map panel (markers are placed in % of the picture, so they follow).
@@ -187,6 +226,7 @@ function renderMarkers() {
     m.addEventListener("click", () => selectNode(node.id).catch(fail));
     layer.append(m);
   }
+  sync3d();
 }
 
 // ------------------------------------------------------------------ hierarchy tree
@@ -345,6 +385,10 @@ function init() {
     if (text && state.map) runQuery(text).catch(fail);
   });
   window.addEventListener("resize", fitBev);
+  for (const b of $("view-switch").children) {
+    b.addEventListener("click", () => setView(b.dataset.view).catch(fail));
+  }
+  document.addEventListener("isg3d:pick", (e) => selectNode(e.detail.id).catch(fail));
   loadMaps().catch(fail);
 }
 
