@@ -432,11 +432,14 @@ def build_map(
     max_frames: int | None = None,
     progress: Any = None,
     total: Any = None,
+    observer: Any = None,
 ) -> dict[str, Any]:
     """Map a dataset into ``map_dir`` as one new session (the map is created when absent).
 
     ``progress`` receives :class:`~inherit_sg.mapping.orchestrator.BuildProgress`
-    counters; ``total`` is called once with the number of frames to expect.
+    counters; ``total`` is called once with the number of frames to expect; ``observer``
+    (a :class:`~inherit_sg.mapping.orchestrator.MapObserver`) sees every frame and the
+    graph after every global update.
     """
     import itertools
 
@@ -469,7 +472,7 @@ def build_map(
             store, session_name, dataset=str(dataset), default_prefix="session", taken=InputError
         )
         store.upsert_session(session)
-        mapper = Mapper(store, cfg, session, progress=progress)
+        mapper = Mapper(store, cfg, session, progress=progress, observer=observer)
         summary = mapper.run(itertools.islice(itertools.chain([first], frames), n_frames))
         pictures = write_bev_pictures(mapper, path)
         compacted = _compact_if_asked(store, cfg)

@@ -34,6 +34,18 @@ def build(
         typer.Option("--set", help="Config override section.field=value (repeatable)."),
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+    rerun: Annotated[
+        str | None,
+        typer.Option(
+            "--rerun",
+            metavar="FILE.rrd|URL",
+            help="Log frames, the graph after each update and the BEV to Rerun: a .rrd file "
+            "or a running viewer's URL (rerun+http://127.0.0.1:9876/proxy). Needs rerun-sdk.",
+        ),
+    ] = None,
+    rerun_images: Annotated[
+        int, typer.Option(min=1, help="With --rerun: log the RGB-D images of every Nth frame.")
+    ] = 5,
 ) -> None:
     """Map DATASET into a map directory as a new session (appends to an existing map)."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
@@ -42,6 +54,11 @@ def build(
     from inherit_sg.facade import build_map
 
     cfg = load_config(config_file, overrides or [])
+    observer = None
+    if rerun is not None:
+        from inherit_sg.viz.rerun_log import RerunLog
+
+        observer = RerunLog(rerun, image_every=rerun_images, name=f"map build {dataset}")
     with Progress(
         TextColumn("{task.description}"),
         BarColumn(),
@@ -70,7 +87,12 @@ def build(
             max_frames=max_frames,
             progress=progress,
             total=total,
+            observer=observer,
         )
+    if observer is not None:
+        observer.bev([Path(p) for p in summary["bev"]])
+        observer.close()
+        summary["rerun"] = rerun
     if as_json:
         print_json(summary)
         return
@@ -96,6 +118,8 @@ def build(
     print_table(["", "value"], rows, title=f"map {summary['map']}")
     for png in summary["bev"]:
         typer.echo(f"BEV picture: {png}")
+    if rerun is not None:
+        typer.echo(f"Rerun recording: {rerun}")
 
 
 @app.command("compact")

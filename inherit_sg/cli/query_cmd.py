@@ -1,7 +1,8 @@
 """``inherit-sg query``: answer natural-language requests on a map.
 
 One request: ``inherit-sg query --map DIR "the mug on the kitchen table" [--json]
-[--no-verify] [--explain] [--top-k K] [--conversation FILE] [--viewer X,Y,Z,YAW]``.
+[--no-verify] [--explain] [--top-k K] [--conversation FILE] [--viewer X,Y,Z,YAW]
+[--rerun FILE.rrd|URL]``.
 Many requests in one process: ``inherit-sg query --map DIR --batch IN.jsonl --out
 OUT.jsonl``; each input line is ``{"id", "text"}`` (a ``queries.jsonl`` line works too)
 and may carry the robot's pose as ``"viewer": {"position": [x, y, z], "yaw_deg": a}``
@@ -201,6 +202,15 @@ def query(
     overrides: Annotated[
         list[str] | None, typer.Option("--set", help="Config override section.field=value.")
     ] = None,
+    rerun: Annotated[
+        str | None,
+        typer.Option(
+            "--rerun",
+            metavar="FILE.rrd|URL",
+            help="Log the map, the candidates, the answer and the trace to Rerun: a .rrd "
+            "file or a running viewer's URL. Needs rerun-sdk.",
+        ),
+    ] = None,
 ) -> None:
     """Answer a natural-language request on a map (or a batch of them)."""
     from inherit_sg.config import load_config
@@ -210,6 +220,8 @@ def query(
         raise InputError("give either a request TEXT or --batch IN.jsonl (not both)")
     if batch is not None and out is None:
         raise InputError("--batch needs --out OUT.jsonl")
+    if batch is not None and rerun is not None:
+        raise InputError("--rerun logs one request: give a request TEXT, not --batch")
     pose = parse_viewer(viewer) if viewer is not None else None
     cfg = load_config(config_file, overrides or [])
     verify = False if no_verify else None
@@ -250,6 +262,12 @@ def query(
             from inherit_sg.retrieval.history import save_conversation
 
             save_conversation(conv, conversation)
+        if rerun is not None:
+            from inherit_sg.viz.rerun_log import RerunLog
+
+            log = RerunLog(rerun, name=f"query {text}")
+            log.query(text, result.to_dict(), service.scene3d())
+            log.close()
     if as_json:
         print_json(result.to_dict())
     else:

@@ -21,6 +21,7 @@ import threading
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import cv2
 import numpy as np
@@ -43,7 +44,16 @@ from inherit_sg.mapping.relation_verifier import Box, GeometricVerifier
 from inherit_sg.mapping.semantic import LabelSimilarity, SemanticStream
 from inherit_sg.mapping.supervisor import Supervisor
 from inherit_sg.mapping.update import HierarchyBuilder
-from inherit_sg.model import Edge, EdgeKind, Frame, Keyframe, ObjectNode, ObjectStatus, Session
+from inherit_sg.model import (
+    Edge,
+    EdgeKind,
+    Frame,
+    Keyframe,
+    ObjectNode,
+    ObjectStatus,
+    SceneGraph,
+    Session,
+)
 from inherit_sg.perception.base import blind_without_instances
 from inherit_sg.store import MapStore
 from inherit_sg.store.mapdir import record_session_vocabulary
@@ -96,6 +106,17 @@ class BuildSummary:
         return dict(vars(self))
 
 
+class MapObserver(Protocol):
+    """Watches a session as it maps (e.g. :class:`inherit_sg.viz.rerun_log.RerunLog`)."""
+
+    def frame(self, frame: Frame) -> None:
+        """Called for every frame, after the geometric stream took it."""
+
+    def graph(self, graph: SceneGraph) -> None:
+        """Called after every global update with the whole graph (under the mapper's lock:
+        read it, do not keep it)."""
+
+
 class Mapper:
     """Builds one mapping session into an open, writable :class:`MapStore`."""
 
@@ -109,6 +130,7 @@ class Mapper:
         flush_every: int = 40,
         progress: Callable[[BuildProgress], None] | None = None,
         supervisor: Supervisor | None = None,
+        observer: MapObserver | None = None,
     ) -> None:
         from inherit_sg.embed import get_text_embedder
         from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
@@ -118,6 +140,7 @@ class Mapper:
         self.store, self.config, self.session = store, config, session
         self.backpressure, self.flush_every, self._progress_cb = backpressure, flush_every, progress
         self.progress = BuildProgress()
+        self.observer = observer
         self.embedder = get_text_embedder(
             config.embedder.model,
             batch_size=config.embedder.batch_size,
@@ -216,6 +239,8 @@ class Mapper:
         events = self.geometry.process(frame.validate())
         self._timings["geometry"] += time.perf_counter() - t0
         self.progress.frames += 1
+        if self.observer is not None:
+            self.observer.frame(frame)
         for event in events:
             if isinstance(event, FloorChanged):
                 self._request_update(
@@ -319,6 +344,8 @@ class Mapper:
             self._timings["update"] += t1 - t0
             self._persist(alias)
             self._timings["persist"] += time.perf_counter() - t1
+            if self.observer is not None:
+                self.observer.graph(self.graph)
         self.progress.updates += 1
         self._report()
 

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import cv2
 import numpy as np
 
-from inherit_sg.model import RoomMask
+from inherit_sg.model import EdgeKind, Layer, ObjectStatus, RoomMask, SceneGraph
 from inherit_sg.reads.models import (
     Scene3D,
     Scene3DConnection,
@@ -27,6 +27,7 @@ from inherit_sg.reads.pictures import floor_level
 
 if TYPE_CHECKING:
     from inherit_sg.facade import MapService
+    from inherit_sg.model import FloorNode, ObjectNode, RoomNode
 
 # the polygon may deviate from the mask's cell edges by this many cells
 OUTLINE_TOLERANCE_CELLS = 1.0
@@ -151,3 +152,61 @@ def build_scene3d(
         relations=_relations(service, {o.id for o in objects}, predicates),
         connections=_connections(service, {r.id for r in rooms}),
     )
+
+
+def scene_from_graph(graph: SceneGraph, *, near: bool = False) -> Scene3D:
+    """The same content as :func:`build_scene3d`, from an in-memory graph (a map being
+    built): all floors."""
+    floors: list[FloorNode] = sorted(graph.nodes(Layer.FLOOR), key=lambda f: f.level)  # type: ignore[arg-type]
+    rooms: list[RoomNode] = sorted(graph.nodes(Layer.ROOM), key=lambda r: r.id)  # type: ignore[arg-type]
+    objects: list[ObjectNode] = sorted(
+        (o for o in graph.objects() if o.status is not ObjectStatus.REMOVED), key=lambda o: o.id
+    )
+    predicates = (*DRAWN_PREDICATES, "near") if near else DRAWN_PREDICATES
+    kept = {o.id for o in objects}
+    room_ids = {r.id for r in rooms}
+    relations = [
+        Scene3DRelation(source=e.src, target=e.dst, predicate=str(e.prop("predicate")))
+        for e in graph.edges(EdgeKind.RELATION)
+        if e.prop("predicate") in predicates and e.src in kept and e.dst in kept
+    ]
+    connections = [
+        Scene3DConnection(source=e.src, target=e.dst, door=_door(e.prop("door")))
+        for e in graph.edges(EdgeKind.CONNECTS)
+        if e.src in room_ids and e.dst in room_ids
+    ]
+    return Scene3D(
+        floors=[
+            Scene3DFloor(id=f.id, label=f.label, level=f.level, z_min=f.z_min, z_max=f.z_max)
+            for f in floors
+        ],
+        rooms=[
+            Scene3DRoom(
+                id=r.id,
+                label=r.label,
+                floor_id=r.floor_id,
+                position=list(r.position),
+                outlines=mask_outlines(r.mask) if r.mask is not None else [],
+            )
+            for r in rooms
+        ],
+        objects=[
+            Scene3DObject(
+                id=o.id,
+                label=o.label,
+                floor_id=o.floor_id,
+                room_id=o.room_id,
+                bbox_min=list(o.bbox.min),
+                bbox_max=list(o.bbox.max),
+            )
+            for o in objects
+        ],
+        relations=relations,
+        connections=connections,
+    )
+
+
+def _door(value: object) -> list[float] | None:
+    if isinstance(value, list | tuple) and len(value) == 3:
+        return [float(v) for v in value]
+    return None
