@@ -21,7 +21,8 @@ label is ``"class <n>"``. Spark-DSG 1.1 keeps label spaces per layer in the meta
 
 Files written by :mod:`inherit_sg.exchange.spark_dsg_export` carry INHerit-SG metadata on
 their nodes and edges (key ``inherit_sg``): then node ids, storeys (one building-layer
-node per floor), areas, summaries and the relation / door / stairs edges come back too.
+node per floor), areas, summaries and the relation / door / stairs edges come back too,
+and an object the map had outside every room stays outside (no unassigned room).
 Without it, room–room edges (Hydra's room adjacency) become ``CONNECTS``.
 """
 
@@ -280,9 +281,20 @@ class _Builder:
             if len(position) != 3 or not np.all(np.isfinite(position)):
                 raise DatasetError(f"{self.p}: object node {nid} has an invalid position")
             sem = int(attrs.get("semantic_label", -1))
-            room_id = self.room_of(nid) or self.unassigned_room(first_floor)
-            room = self.graph.get(room_id)
-            area_id = self.area_for(room_id, ours.get("area_id"))
+            room_id = self.room_of(nid)
+            floor_id = first_floor
+            if room_id is None and ours and ours.get("area_id") is None:
+                # our export of an object outside every room: it stays outside
+                area_id = None
+                if ours.get("floor_id") in self.graph:
+                    floor_id = ours["floor_id"]
+            else:
+                room_id = room_id or self.unassigned_room(first_floor)
+                area_id = self.area_for(room_id, ours.get("area_id"))
+                room = self.graph.get(room_id)
+                floor_id = (
+                    room.floor_id if isinstance(room, RoomNode) and room.floor_id else floor_id
+                )
             extra = ours.get("attributes")
             obj = ObjectNode(
                 id=_node_id(Layer.OBJECT, ours.get("id"), self.graph, count),
@@ -301,12 +313,13 @@ class _Builder:
                 },
                 area_id=area_id,
                 room_id=room_id,
-                floor_id=room.floor_id if isinstance(room, RoomNode) else first_floor,
+                floor_id=floor_id,
             )
             if ours.get("status") in {s.value for s in ObjectStatus}:
                 obj.status = ObjectStatus(ours["status"])
             self.graph.add_or_update(obj)
-            self.graph.add_edge(Edge.make(EdgeKind.HAS_OBJECT, area_id, obj.id))
+            if area_id is not None:
+                self.graph.add_edge(Edge.make(EdgeKind.HAS_OBJECT, area_id, obj.id))
             self.ids[nid] = obj.id
             count += 1
 

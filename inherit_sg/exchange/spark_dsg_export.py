@@ -186,6 +186,7 @@ def graph_to_spark_dsg(graph: SceneGraph) -> Any:
                 META_KEY: {
                     "id": obj.id,
                     "area_id": obj.area_id,
+                    "floor_id": obj.floor_id,
                     "description": obj.description,
                     "status": obj.status.value,
                     "observation_count": obj.observation_count,
