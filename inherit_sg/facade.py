@@ -312,6 +312,13 @@ class MapService:
             "keyframes": len(keyframe_ids),
         }
 
+    def export_spark_dsg(self, out: str | Path) -> dict[str, int]:
+        """Write the scene graph as Spark-DSG JSON with the ``spark_dsg`` package (see
+        :mod:`inherit_sg.exchange.spark_dsg_export`); counts are of the written graph."""
+        from inherit_sg.exchange.spark_dsg_export import export_spark_dsg
+
+        return {**export_spark_dsg(self.store.load_graph(), out), "keyframes": 0}
+
 
 def _config_for_export(doc: dict[str, Any], base: Config) -> Config:
     """The base config with the vector dimensions the exported map was made with."""

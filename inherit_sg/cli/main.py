@@ -155,13 +155,29 @@ def export_map(
     no_images: Annotated[
         bool, typer.Option("--no-images", help="Leave keyframe JPEGs out.")
     ] = False,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format",
+            "-f",
+            help="json (lossless INHerit-SG export) or spark-dsg (Hydra scene graph JSON, "
+            "written by the spark-dsg package).",
+        ),
+    ] = "json",
     as_json: JsonOption = False,
 ) -> None:
-    """Write a whole map (embeddings, masks, keyframes) to one lossless JSON file."""
+    """Write a whole map (embeddings, masks, keyframes) to one lossless JSON file, or its
+    scene graph as Spark-DSG JSON (--format spark-dsg; objects folded into rooms)."""
+    from inherit_sg.errors import InputError
     from inherit_sg.facade import MapService
 
+    if fmt not in ("json", "spark-dsg"):
+        raise InputError(f"unknown export format {fmt!r}: use json or spark-dsg")
     with MapService.open(map_dir) as service:
-        summary = service.export_json(out, images=not no_images)
+        if fmt == "spark-dsg":
+            summary = service.export_spark_dsg(out)
+        else:
+            summary = service.export_json(out, images=not no_images)
     if as_json:
         print_json(summary)
     else:

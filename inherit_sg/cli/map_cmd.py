@@ -24,7 +24,12 @@ def build(
         Path, typer.Option("--map", "-m", help="Map directory (created when absent).")
     ],
     fmt: Annotated[
-        str, typer.Option("--format", "-f", help="auto, isg, replica, scannet, tum or hm3d.")
+        str,
+        typer.Option(
+            "--format",
+            "-f",
+            help="auto, isg, replica, scannet, tum, hm3d, mp3d or record3d (.r3d).",
+        ),
     ] = "auto",
     session: Annotated[str | None, typer.Option(help="Session name (default session-N).")] = None,
     max_frames: Annotated[int | None, typer.Option(min=1, help="Only the first N frames.")] = None,

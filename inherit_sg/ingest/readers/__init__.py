@@ -75,6 +75,7 @@ BUILTIN_FORMATS: tuple[ReaderSpec, ...] = (
     ReaderSpec("tum", "inherit_sg.ingest.readers.tum:TumReader", ("rgb.txt", "depth.txt")),
     ReaderSpec("hm3d", "inherit_sg.ingest.readers.hm3d:Hm3dReader", ("rgb/", "depth/", "pose/")),
     ReaderSpec("mp3d", "inherit_sg.ingest.readers.mp3d:Mp3dReader", ("*.house",)),
+    ReaderSpec("record3d", "inherit_sg.ingest.readers.record3d:Record3dReader", ("*.r3d",)),
 )
 
 

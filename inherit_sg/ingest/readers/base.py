@@ -37,14 +37,17 @@ class IndexedReader(ABC):
     Subclasses set ``format_name``, ``intrinsics`` and ``frame_ids`` in their constructor
     and implement :meth:`_load`. ``skipped`` maps the ids of frames left out of the stream
     to the reason (no pose, invalid pose, missing image), so callers can report them.
+    ``single_file`` readers (one archive holds the dataset) take a file as ``root``.
     """
 
     format_name: str = ""
     intrinsics: Intrinsics
 
-    def __init__(self, root: str | Path) -> None:
+    def __init__(self, root: str | Path, *, single_file: bool = False) -> None:
         self.root = Path(root)
-        if not self.root.is_dir():
+        if single_file and not self.root.is_file():
+            raise DatasetError(f"{self.format_name} file not found: {self.root}")
+        if not single_file and not self.root.is_dir():
             raise DatasetError(f"{self.format_name} dataset folder not found: {self.root}")
         self.frame_ids: list[str] = []
         self.skipped: dict[str, str] = {}
