@@ -757,6 +757,8 @@ class ClauseParser(Grammar):
             return False
         assert isinstance(prev, Tok)
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
+        # "i don't know the name, the thing above the tv": the object of a filler verb
+        after_verb = after_verb or (prev.has("filler") and prev.pos == "VERB")
         after_purpose = prev.has("for", "while") and bool(out.functions)
         if after_verb or after_purpose:
             self.notes.append(f"{np.noun!r} is the object of {prev.text!r}, not the target")
