@@ -64,6 +64,9 @@ def test_sentences_and_spelling() -> None:
     assert correct_spelling("the TV by the credenza")[1] == []
     parsed = parse_rules("wheres teh walet")
     assert parsed.target.labels == ("wallet",)
+    # three-letter slips: a dropped letter of a thing's name, never of any other word
+    assert correct_spelling("the trashcan under the dsk")[0] == "the trashcan under the desk"
+    assert correct_spelling("wll sed")[1] == []
     assert any("spelling" in note for note in parsed.notes)
 
 

@@ -10,6 +10,7 @@ from inherit_sg.retrieval.constraints import (
     FunctionConstraint,
     LabelConstraint,
     RelationConstraint,
+    Superlative,
     Target,
 )
 from inherit_sg.retrieval.query import ParsedQuery, number_constraints
@@ -90,6 +91,33 @@ def _lift_surface_relations(constraints: list[Constraint]) -> list[Constraint]:
     return out
 
 
+def _lift_proximity_superlatives(constraints: list[Constraint]) -> list[Constraint]:
+    """ "the pillow on the couch closest to the tv": "closest to the tv" picks the pillow
+    (people name the target's place, then single it out); with one couch the landmark
+    reading would lose it, and with several the closest pillow sits on the closest couch
+    anyway. Only when the target has no superlative of its own."""
+    if any(isinstance(c, Superlative) for c in constraints):
+        return constraints
+    out: list[Constraint] = []
+    lifted: list[Constraint] = []
+    for con in constraints:
+        if isinstance(con, RelationConstraint) and not con.negated and not lifted:
+            picks = [
+                c
+                for c in con.landmark.constraints
+                if isinstance(c, Superlative)
+                and c.measure in ("closest", "farthest")
+                and c.landmark is not None
+                and not c.negated
+            ]
+            if picks:
+                rest = tuple(c for c in con.landmark.constraints if c not in picks)
+                con = replace(con, landmark=replace(con.landmark, constraints=rest))
+                lifted = picks[:1]
+        out.append(con)
+    return out + lifted
+
+
 def _guess_function(words: list[str], notes: list[str]) -> list[FunctionConstraint]:
     """Purpose words anywhere in the request when the grammar found neither label nor
     function ("a workspace with noise reduction" → work); weighted as a hedge."""
@@ -159,8 +187,8 @@ def assemble(
         constraints.append(LabelConstraint(labels=target.labels, noun=head.noun, text=head.noun))
     constraints += functions
     constraints += _dedupe([c for c in own if c.kind == "attribute"])
-    constraints += _lift_surface_relations(
-        [c for c in own if c.kind not in ("attribute", "function")]
+    constraints += _lift_proximity_superlatives(
+        _lift_surface_relations([c for c in own if c.kind not in ("attribute", "function")])
     )
     constraints += clause.excluded_labels
     places = sorted(clause.places + head.places, key=lambda c: _PLACE_ORDER[c.kind])

@@ -5,8 +5,8 @@ its bundled English frequency dictionary plus every vocabulary word).
 
 Only clear cases are corrected: one edit (insert, delete, substitute or swap) for words
 of five letters or more, a swap of letters for shorter ones ("teh" → "the", "fidn" →
-"find"), and one edit that gives a vocabulary word for four-letter ones ("towl" →
-"towel"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay
+"find"), a dropped letter of a vocabulary word for three-letter ones ("dsk" → "desk"),
+and one edit that gives a vocabulary word for four-letter ones ("towl" → "towel"); words with digits, acronyms in capitals ("TV", "PC") and two-letter words stay
 as written. The dictionary is loaded on the first word that needs it (about 0.5 s), so
 requests without typos never pay for it. Apostrophe-less contractions ("thats", "dont")
 are restored from ``lexicon.toml``.
@@ -54,6 +54,12 @@ def vocabulary_words() -> frozenset[str]:
 
 
 @lru_cache(maxsize=1)
+def _object_words() -> frozenset[str]:
+    """Single words that name things (object labels and their synonyms)."""
+    return frozenset(w for p in object_vocab.phrases() for w in p.split() if w.isalpha())
+
+
+@lru_cache(maxsize=1)
 def _checker() -> object:
     """The loaded symspellpy checker (English dictionary + vocabulary words)."""
     from symspellpy import SymSpell
@@ -96,8 +102,10 @@ def correct_word(word: str) -> str | None:
         found, key=lambda s: (s.term not in vocab, len(s.term) != len(word) + 1, -s.count)
     )[0]
     swapped = sorted(best.term) == sorted(word)
-    if len(word) < 5 and not swapped and (len(word) < 4 or best.term not in vocab):
-        return None  # short words: swapped letters, or one edit to a vocabulary word ("towl")
+    # "dsk" → "desk": a dropped letter of a thing's name (three-letter words only)
+    dropped = len(best.term) == len(word) + 1 and best.term in _object_words()
+    if len(word) < 5 and not swapped and not dropped and (len(word) < 4 or best.term not in vocab):
+        return None  # short words: swapped or dropped letters, one edit to a vocabulary word
     return str(best.term)
 
 
