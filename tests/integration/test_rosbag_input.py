@@ -6,6 +6,7 @@ folder. Also the errors a user meets: ambiguous topics, no depth, a wrong TF pai
 from __future__ import annotations
 
 import json
+import sqlite3
 from pathlib import Path
 from typing import Any
 
@@ -118,6 +119,16 @@ def test_mcap_bag_and_body_axes(house: Path, tmp_path: Path) -> None:
     bag = write_bag(house, tmp_path / "recording", BagSpec(storage="mcap", pose="tf"))
     _assert_same_frames(bag, house, tf=f"odom:{CAMERA_FRAME}")
     _assert_same_frames(bag, house, tf="map:camera_link", camera_axes="body")
+
+
+def test_a_ros2_bag_without_message_definitions_reads_with_the_standard_types(
+    house: Path, tmp_path: Path
+) -> None:
+    """rosbag2 stored no message definitions before its format 8 (Humble records so)."""
+    bag = write_bag(house, tmp_path / "recording", BagSpec())
+    with sqlite3.connect(next(bag.glob("*.db3"))) as db:
+        db.execute("DELETE FROM message_definitions")
+    _assert_same_frames(bag, house)
 
 
 def test_ambiguous_topics_are_listed_with_the_option_to_pass(house: Path, tmp_path: Path) -> None:

@@ -93,6 +93,8 @@ def bag_paths(path: Path) -> list[Path]:
     bags = sorted(path.glob("*.bag")) if path.is_dir() else []
     if bags:
         return bags
+    if path.is_dir() and any(path.glob("*.mcap")):
+        raise DatasetError(f"{path}: .mcap files without the metadata.yaml of a ROS 2 bag")
     raise DatasetError(
         f"{path}: not a ROS bag (a .bag file, a folder of .bag files, or a ROS 2 bag folder "
         "with metadata.yaml)"
@@ -104,11 +106,14 @@ def open_bag(path: Path) -> Iterator[Any]:
     """An open ``rosbags`` AnyReader on ``path``; DatasetError when it cannot be read."""
     try:
         from rosbags.highlevel import AnyReader, AnyReaderError
+        from rosbags.typesys import Stores, get_typestore
     except ImportError:
         raise DatasetError(INSTALL_HINT) from None
     paths = bag_paths(path)
     try:
-        reader = AnyReader(paths)
+        # ROS 2 bags recorded before rosbag2 stored message definitions (Humble and
+        # earlier by default) are read with the standard message types
+        reader = AnyReader(paths, default_typestore=get_typestore(Stores.LATEST))
         reader.open()
     except (AnyReaderError, OSError) as exc:
         raise DatasetError(f"cannot read bag {path}: {exc}") from None
