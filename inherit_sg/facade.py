@@ -440,13 +440,15 @@ def build_map(
     progress: Any = None,
     total: Any = None,
     observer: Any = None,
+    reader_options: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Map a dataset into ``map_dir`` as one new session (the map is created when absent).
 
     ``progress`` receives :class:`~inherit_sg.mapping.orchestrator.BuildProgress`
     counters; ``total`` is called once with the number of frames to expect; ``observer``
     (a :class:`~inherit_sg.mapping.orchestrator.MapObserver`) sees every frame and the
-    graph after every global update.
+    graph after every global update; ``reader_options`` go to the dataset reader (e.g.
+    ``rgb_topic`` for a ROS bag).
     """
     import itertools
 
@@ -458,7 +460,7 @@ def build_map(
     if max_frames is not None and max_frames < 1:
         raise InputError(f"max_frames must be at least 1, got {max_frames}")
     cfg = config or load_config()
-    source = open_dataset(dataset, fmt)
+    source = open_dataset(dataset, fmt, **(reader_options or {}))
     if len(source) == 0:
         raise InputError(f"dataset {dataset} has no frames (is its pose list empty?)")
     n_frames = len(source) if max_frames is None else min(len(source), max_frames)

@@ -26,22 +26,18 @@ class ReaderSpec:
     ``loader`` is ``"module:attribute"`` naming a callable ``(path, **options) ->
     FrameSource``. ``markers`` are glob patterns relative to the dataset folder that must
     all match for auto-detection; a trailing ``/`` asks for a folder. A spec whose only
-    marker is a file pattern also matches a path to such a file.
+    marker is a file pattern also matches a path to such a file. ``alternatives`` are
+    further marker sets, any one of which also identifies the format.
     """
 
     name: str
     loader: str
     markers: tuple[str, ...]
+    alternatives: tuple[tuple[str, ...], ...] = ()
 
     def matches(self, path: Path) -> bool:
         """Whether ``path`` has this format's layout."""
-        if path.is_file():
-            return (
-                len(self.markers) == 1
-                and not self.markers[0].endswith("/")
-                and fnmatch(path.name, self.markers[0])
-            )
-        return path.is_dir() and all(_has_marker(path, m) for m in self.markers)
+        return any(_layout_matches(path, m) for m in (self.markers, *self.alternatives))
 
     def load(self) -> Callable[..., FrameSource]:
         """Import and return the reader callable."""
@@ -49,6 +45,12 @@ class ReaderSpec:
         return cast(
             Callable[..., FrameSource], getattr(importlib.import_module(module_name), attribute)
         )
+
+
+def _layout_matches(path: Path, markers: tuple[str, ...]) -> bool:
+    if path.is_file():
+        return len(markers) == 1 and not markers[0].endswith("/") and fnmatch(path.name, markers[0])
+    return path.is_dir() and all(_has_marker(path, m) for m in markers)
 
 
 def _has_marker(root: Path, marker: str) -> bool:
@@ -76,6 +78,13 @@ BUILTIN_FORMATS: tuple[ReaderSpec, ...] = (
     ReaderSpec("hm3d", "inherit_sg.ingest.readers.hm3d:Hm3dReader", ("rgb/", "depth/", "pose/")),
     ReaderSpec("mp3d", "inherit_sg.ingest.readers.mp3d:Mp3dReader", ("*.house",)),
     ReaderSpec("record3d", "inherit_sg.ingest.readers.record3d:Record3dReader", ("*.r3d",)),
+    # a ROS 2 bag folder, a ROS 1 .bag file (or a folder of them), an .mcap file
+    ReaderSpec(
+        "rosbag",
+        "inherit_sg.ingest.readers.rosbag:RosbagReader",
+        ("metadata.yaml",),
+        (("*.bag",), ("*.mcap",)),
+    ),
 )
 
 
@@ -112,7 +121,8 @@ def detect_format(path: str | Path) -> str:
 
 def open_dataset(path: str | Path, format: str = "auto", **options: Any) -> FrameSource:
     """Open ``path`` as a frame source of ``format`` (``"auto"`` detects it). Extra keyword
-    options go to the reader (e.g. ``camera="fr2"`` for TUM, ``hfov_deg`` for HM3D)."""
+    options go to the reader (e.g. ``camera="fr2"`` for TUM, ``hfov_deg`` for HM3D,
+    ``rgb_topic`` for rosbag)."""
     name = detect_format(path) if format == "auto" else format
     spec = _REGISTRY.get(name)
     if spec is None:
