@@ -41,7 +41,12 @@ def resolve_maps(maps: dict[str, Path] | Path) -> dict[str, Path]:
         if (root / "map.json").is_file():
             named = {root.resolve().name: root}
         elif root.is_dir():
-            named = {p.name: p for p in sorted(root.iterdir()) if (p / "map.json").is_file()}
+            # hidden folders are skipped: build-many's maps in the making (.NAME.*.partial)
+            named = {
+                p.name: p
+                for p in sorted(root.iterdir())
+                if (p / "map.json").is_file() and not p.name.startswith(".")
+            }
         else:
             raise MapNotFoundError(f"map directory not found: {root}")
         if not named:

@@ -19,6 +19,7 @@ from inherit_sg.cli import (
     parse_cmd,
     query_cmd,
     reads_cmd,
+    scale_cmd,
     serve_cmd,
     sim,
 )
@@ -35,6 +36,7 @@ app = typer.Typer(
 
 app.add_typer(sim.app, name="sim")
 app.add_typer(map_cmd.app, name="map")
+map_cmd.app.command("build-many")(scale_cmd.build_many)
 app.command("parse")(parse_cmd.parse)
 app.command("demo")(demo_cmd.demo)
 app.command("query")(query_cmd.query)

@@ -80,6 +80,21 @@ def serve(
             "the maps read-only: no live sessions, no conversations.",
         ),
     ] = None,
+    ray: Annotated[
+        bool,
+        typer.Option(
+            "--ray",
+            help="Serve as a Ray Serve deployment of --replicas read-only replicas "
+            "(needs inherit-sg[ray]; see docs/scaling.md).",
+        ),
+    ] = False,
+    ray_address: Annotated[
+        str | None,
+        typer.Option(help="With --ray: the cluster (default: a local one sized to this machine)."),
+    ] = None,
+    replicas: Annotated[
+        int, typer.Option(min=1, max=256, help="With --ray: replicas of the app.")
+    ] = 2,
 ) -> None:
     """Serve maps at http://HOST:PORT/v1/maps/{name} (name = directory name). On a host
     other machines can reach, API keys are required unless --insecure is given."""
@@ -98,6 +113,9 @@ def serve(
         cfg = cfg.model_copy(
             update={"service": cfg.service.model_copy(update={"workers": workers})}
         )
+    if ray:
+        _serve_on_ray(map_dir, cfg, bind_host, bind_port, replicas, ray_address, exposed)
+        return
     processes = cfg.service.workers
     app = create_app(map_dir, cfg)  # checks the maps before any worker starts
     if exposed is not None:
@@ -116,6 +134,36 @@ def serve(
 
     os.environ.update(worker_environment(map_dir.absolute(), cfg))
     run_workers(bind_host, bind_port, processes)
+
+
+def _serve_on_ray(
+    map_dir: Path,
+    cfg: Config,
+    host: str,
+    port: int,
+    replicas: int,
+    address: str | None,
+    exposed: str | None,
+) -> None:
+    """``serve --ray``: the same app as a Ray Serve deployment (inherit_sg.scale.serve)."""
+    from inherit_sg.api.state import resolve_maps
+    from inherit_sg.scale import require_ray
+
+    names = resolve_maps(map_dir)  # bad paths fail here, before Ray starts
+    require_ray()
+    from inherit_sg.scale.serve import run_serve
+
+    if exposed is not None:
+        typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
+    shown = f"[{host}]" if ":" in host else host
+
+    def ready() -> None:
+        typer.echo(
+            f"serving {len(names)} map(s) from {map_dir} at http://{shown}:{port}/v1/maps/ "
+            f"({replicas} Ray Serve replicas, read-only)"
+        )
+
+    run_serve(map_dir, cfg, host=host, port=port, replicas=replicas, address=address, ready=ready)
 
 
 def run_workers(host: str, port: int, processes: int) -> None:
