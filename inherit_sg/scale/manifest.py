@@ -22,8 +22,8 @@ from pathlib import Path
 from typing import Any
 
 from inherit_sg.errors import InputError
+from inherit_sg.ingest.readers import formats
 
-FORMATS = ("auto", "isg", "replica", "scannet", "tum", "hm3d", "mp3d", "record3d")
 MAP_KEYS = frozenset({"dataset", "format", "map", "session", "max_frames", "sessions"})
 SESSION_KEYS = frozenset({"dataset", "format", "session", "max_frames"})
 NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,127}$")
@@ -68,8 +68,9 @@ def _session(raw: Any, base: Path, where: str, keys: frozenset[str]) -> SessionJ
     if not path.exists():
         raise ManifestError(f"{where}: dataset {path} does not exist")
     fmt = raw.get("format", "auto")
-    if fmt not in FORMATS:
-        raise ManifestError(f"{where}: format {fmt!r} is not one of {', '.join(FORMATS)}")
+    known = ("auto", *formats())  # every registered reader
+    if fmt not in known:
+        raise ManifestError(f"{where}: format {fmt!r} is not one of {', '.join(known)}")
     session = raw.get("session")
     if session is not None and (not isinstance(session, str) or not session.strip()):
         raise ManifestError(f"{where}: 'session' must be a non-empty string")
