@@ -220,6 +220,10 @@ def _related(head: NP, other: NP) -> bool:
     return False
 
 
+# verbs whose object is what the speaker knows or says, not what they seek
+_MENTAL_VERBS = frozenset({"know", "remember", "forget", "forgot", "recall", "think", "say"})
+
+
 class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
@@ -757,8 +761,10 @@ class ClauseParser(Grammar):
             return False
         assert isinstance(prev, Tok)
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
-        # "i don't know the name, the thing above the tv": the object of a filler verb
-        after_verb = after_verb or (prev.has("filler") and prev.pos == "VERB")
+        # "i don't know the name, the thing above the tv": the object of a verb of
+        # knowing or saying in a filler phrase (not of "where can i find")
+        mental = prev.has("filler") and prev.text.split()[-1] in _MENTAL_VERBS
+        after_verb = after_verb or mental
         after_purpose = prev.has("for", "while") and bool(out.functions)
         if after_verb or after_purpose:
             self.notes.append(f"{np.noun!r} is the object of {prev.text!r}, not the target")
