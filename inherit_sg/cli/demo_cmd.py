@@ -8,7 +8,7 @@ from typing import Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import handle_errors, print_json
+from inherit_sg.cli.output import counting_bars, handle_errors, print_json
 
 
 @handle_errors
@@ -29,7 +29,6 @@ def demo(
     """Generate a two-floor house, map it with the offline defaults, answer showcase
     requests of every kind (each checked against the ground truth), write BEV pictures."""
     from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from inherit_sg import demo as demo_lib
     from inherit_sg.facade import build_map
@@ -37,13 +36,7 @@ def demo(
     console = Console(stderr=as_json)
     start = time.perf_counter()
     demo_lib.prepare_out(out, force)
-    columns = (
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-    )
-    with Progress(*columns, console=console, transient=as_json) as bars:
+    with counting_bars(console=console, transient=as_json) as bars:
         render = bars.add_task("1/3 rendering the house", total=None)
         dataset = demo_lib.generate(
             out, seed, width, height, lambda d, t: bars.update(render, completed=d, total=t)

@@ -7,7 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import handle_errors, print_json, print_table
+from inherit_sg.cli.output import counting_bars, handle_errors, print_json, print_table
 
 app = typer.Typer(
     name="map", help="Build and extend maps from posed RGB-D datasets.", no_args_is_help=True
@@ -104,8 +104,6 @@ def build(
     ROS bags: topics left out are picked by message type and name; when that is
     ambiguous the error lists the candidates. See them with `inherit-sg map topics BAG`.
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
     from inherit_sg.config import load_config
     from inherit_sg.facade import build_map
 
@@ -125,13 +123,7 @@ def build(
         from inherit_sg.viz.rerun_log import RerunLog
 
         observer = RerunLog(rerun, image_every=rerun_images, name=f"map build {dataset}")
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        transient=as_json,
-    ) as bars:
+    with counting_bars(transient=as_json) as bars:
         frames = bars.add_task("frames", total=None)
         keyframes = bars.add_task("keyframes (semantic)", total=None)
         objects = bars.add_task("objects", total=None)

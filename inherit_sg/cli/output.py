@@ -49,6 +49,20 @@ def print_table(
     Console().print(table)
 
 
+def counting_bars(*, transient: bool = False, console: Any = None) -> Any:
+    """A rich progress display of labelled bars with done/total counts and elapsed time
+    (``transient``: gone when it ends, e.g. before JSON output)."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+    )
+    return Progress(*columns, console=console, transient=transient)
+
+
 def handle_errors(func: Callable[P, R]) -> Callable[P, R]:
     """Turn library errors into a one-line message (or JSON with --json) and exit 2."""
 

@@ -11,7 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import handle_errors, print_json, print_table
+from inherit_sg.cli.output import counting_bars, handle_errors, print_json, print_table
 
 SUMMARY_COLUMNS = ("map", "status", "sessions", "frames", "rooms", "objects", "seconds", "error")
 
@@ -70,8 +70,6 @@ def build_many(
     in parallel, a map's sessions in order. A map appears under ROOT only once all its
     sessions are built; a failed task is retried, then reported. Exit code 1 when some
     map failed."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
     from inherit_sg.config import load_config
     from inherit_sg.scale import require_ray
     from inherit_sg.scale.build_many import build_many as run
@@ -80,13 +78,7 @@ def build_many(
     cfg = load_config(config_file, overrides or [])  # sent to every task
     jobs = read_manifest(manifest)
     require_ray()
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        transient=as_json,
-    ) as bars:
+    with counting_bars(transient=as_json) as bars:
         bar = bars.add_task("maps", total=len(jobs))
 
         def done(record: dict[str, Any]) -> None:
