@@ -8,8 +8,10 @@ plus in-memory work. Engines are safe to share between threads.
 
 from __future__ import annotations
 
+import gc
 import threading
 import time
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -55,6 +57,20 @@ class Parser(Protocol):
 
 def _ms(start: float) -> float:
     return (time.perf_counter() - start) * 1000.0
+
+
+def _frozen(load: Callable[[], MapSnapshot]) -> MapSnapshot:
+    """``load()`` with its result kept out of the cyclic garbage collector's passes.
+
+    A snapshot is hundreds of thousands of long-lived objects; each request's
+    short-lived ones trigger collections that walk all of them (0.1-0.5 s at 100k
+    objects). ``gc.freeze`` moves every object alive now into the permanent generation,
+    which collections skip; ``gc.unfreeze`` first hands the previous snapshot back to
+    the collector so a reload frees it. Both are O(1)."""
+    gc.unfreeze()
+    snap = load()
+    gc.freeze()
+    return snap
 
 
 def _answerable(spec: NodeSpec, ranked: list[Scored]) -> bool:
@@ -181,7 +197,9 @@ class QueryEngine:
         version = map_version(self.store.path)
         with self._lock:
             if self._snap is None or self._snap.version != version:
-                self._snap = load_snapshot(self.store, use_areas=self.config.retrieval.use_areas)
+                self._snap = _frozen(
+                    lambda: load_snapshot(self.store, use_areas=self.config.retrieval.use_areas)
+                )
                 self._checker = GraphChecker(self._snap)
             assert self._checker is not None
             return self._snap, self._checker

@@ -129,6 +129,17 @@ def room_type_sims(
     return out
 
 
+def all_room_type_sims(
+    snap: MapSnapshot, *, negated: bool = False
+) -> dict[str, dict[str, tuple[float, str]]]:
+    """:func:`room_type_sims` of every room, by sorted room id (worked out once per
+    snapshot: a large map has thousands of rooms and every room constraint reads them)."""
+    return snap.memo(
+        ("room_type_sims", negated),
+        lambda: {rid: room_type_sims(rid, snap, negated=negated) for rid in sorted(snap.rooms)},
+    )
+
+
 def _by_type(rid: str, wanted: str, types: dict[str, tuple[float, str]]) -> tuple[float, str]:
     value, how = types[wanted]
     step = "label" if how.startswith("its label") else "alternatives"
@@ -221,8 +232,7 @@ def match_rooms(
     # "den" names a family room and a TV room alike (``also`` in rooms.toml).
     wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
     labelled: set[str] = set()  # rooms whose label names the type asked for
-    for rid in sorted(snap.rooms):
-        types = room_type_sims(rid, snap, negated=negated)
+    for rid, types in all_room_type_sims(snap, negated=negated).items():
         exact = [
             (_by_type(rid, t, types), types[t][1].startswith("its label"))
             for t in dict.fromkeys(wanted)
