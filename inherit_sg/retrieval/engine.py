@@ -11,7 +11,7 @@ from __future__ import annotations
 import gc
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Protocol
 
 import numpy as np
@@ -73,7 +73,7 @@ def _frozen(load: Callable[[], MapSnapshot]) -> MapSnapshot:
     return snap
 
 
-def _answerable(spec: NodeSpec, ranked: list[Scored]) -> bool:
+def _answerable(spec: NodeSpec, ranked: Sequence[Scored]) -> bool:
     """Whether the best candidate meets something: a positive score, or — for requests
     made only of negations ("something not in the kitchen") — no penalty."""
     if not ranked:
@@ -83,7 +83,7 @@ def _answerable(spec: NodeSpec, ranked: list[Scored]) -> bool:
     return ranked[0].score >= 0.0
 
 
-def verification_candidates(ranked: list[Scored], depth: int, max_gap: float) -> list[Scored]:
+def verification_candidates(ranked: Sequence[Scored], depth: int, max_gap: float) -> list[Scored]:
     """The candidates visual verification may try, best first: the top ``depth`` that
     score at most ``max_gap`` below the best (the best always)."""
     if not ranked:
@@ -239,7 +239,7 @@ class QueryEngine:
         view: tuple[MapSnapshot, GraphChecker] | None = None,
         *,
         viewer: ViewerPose | None = None,
-    ) -> list[Scored]:
+    ) -> Sequence[Scored]:
         """Ranked target candidates of ``plan``: the viewpoint's landmark first, then
         the other landmarks, recursively; ``viewer`` is the robot's pose, if known."""
         snap, checker = view or self.snapshot()
@@ -325,7 +325,7 @@ class QueryEngine:
         self,
         snap: MapSnapshot,
         spec: NodeSpec,
-        ranked: list[Scored],
+        ranked: Sequence[Scored],
         text: str,
         verify: bool,
         trace: list[str],

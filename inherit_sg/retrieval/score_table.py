@@ -13,8 +13,9 @@ term by term), so a row's score is the same float either way.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
 
@@ -143,10 +144,58 @@ class ScoreTable:
             col.sims[row] = term.sim
             col.whys[row] = term.why
 
-    def ranked(self, order: np.ndarray) -> list[Scored]:
-        """The rows in ``order`` as lazily built candidates."""
-        scores = self.scores()
-        return [Row(self, int(i), float(scores[i])) for i in order]
+    def ranked(self, order: np.ndarray) -> RankedRows:
+        """The rows in ``order`` as a ranking whose candidates are made when read."""
+        return RankedRows(self, order)
+
+
+class RankedRows(Sequence[Scored]):
+    """A ranking of a table's rows: a read-only sequence of :class:`Row` s, each made on
+    first access and kept (a request reads the top few of thousands)."""
+
+    def __init__(self, table: ScoreTable, order: np.ndarray) -> None:
+        self._table = table
+        self._order = order
+        self._scores = table.scores()
+        self._made: dict[int, Row] = {}
+
+    def __len__(self) -> int:
+        return len(self._order)
+
+    def _at(self, pos: int) -> Row:
+        row = self._made.get(pos)
+        if row is None:
+            i = int(self._order[pos])
+            row = self._made[pos] = Row(self._table, i, float(self._scores[i]))
+        return row
+
+    @overload
+    def __getitem__(self, pos: int) -> Scored: ...
+
+    @overload
+    def __getitem__(self, pos: slice) -> list[Scored]: ...
+
+    def __getitem__(self, pos: int | slice) -> Scored | list[Scored]:
+        if isinstance(pos, slice):
+            return [self._at(i) for i in range(*pos.indices(len(self)))]
+        if pos < 0:
+            pos += len(self)
+        if not 0 <= pos < len(self):
+            raise IndexError("ranking index out of range")
+        return self._at(pos)
+
+    def __iter__(self) -> Iterator[Scored]:
+        return (self._at(i) for i in range(len(self)))
+
+    def floor_dropped(self) -> int:
+        """How many candidates the floor filter dropped (``H_floor = 0``)."""
+        return int(np.count_nonzero(self._table.h_floor == 0))
+
+    def positive(self, limit: int) -> list[Scored]:
+        """The first ``limit`` candidates with ``H_floor`` 1 and a score above 0, in
+        ranking order (looked up in the table, without making the others)."""
+        live = (self._table.h_floor[self._order] != 0) & (self._scores[self._order] > 0.0)
+        return [self._at(int(pos)) for pos in np.flatnonzero(live)[:limit]]
 
 
 class Row(Scored):

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -55,7 +55,7 @@ from inherit_sg.retrieval.ordinals import place
 from inherit_sg.retrieval.parts import part_sim
 from inherit_sg.retrieval.placement import PlacementMeter
 from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, VIEWPOINT, NodeSpec
-from inherit_sg.retrieval.score_table import ScoreTable
+from inherit_sg.retrieval.score_table import RankedRows, ScoreTable
 from inherit_sg.retrieval.scored import Scored
 from inherit_sg.retrieval.scored import Term as Term  # re-exported: callers import it here
 from inherit_sg.retrieval.sizes import (
@@ -237,8 +237,9 @@ class Scorer:
 
     def score(
         self, spec: NodeSpec, cands: Candidates, landmarks: dict[str, Landmarks]
-    ) -> tuple[list[Scored], list[str]]:
-        """Ranked candidates of ``spec`` and notes for the trace."""
+    ) -> tuple[Sequence[Scored], list[str]]:
+        """Ranked candidates of ``spec`` and notes for the trace (a read-only sequence
+        whose candidates are made when read)."""
         notes: list[str] = []
         finder = ViewFinder(
             self.snap,
@@ -272,18 +273,35 @@ class Scorer:
         """Row order of the ranking: what is not the kind asked for after what surely
         is (see :func:`_kind_first`), then best score, best label / function match, most
         observations and id (:func:`_rank_key`)."""
-        snap = self.snap
         live = table.h_floor != 0
         named = table.named_best()
         other = np.zeros(len(table), dtype=bool)
         if np.any(live & (named >= SURE_KIND)):
             other = live & (named < STRONG_MATCH)
-        seen = [
-            o.observation_count if (o := snap.objects.get(i)) is not None else 0 for i in table.ids
+        keys = self._seen_and_rank(table)
+        return np.lexsort((*keys, -table.named_sum(), -table.scores(), other))
+
+    def _seen_and_rank(self, table: ScoreTable) -> tuple[np.ndarray, np.ndarray]:
+        """The last two sort keys per row: the id's sorted position, and minus the
+        observation count (0 for nodes that are no objects)."""
+        snap = self.snap
+        rows = self._object_rows(table)
+        if rows is not None:
+            seen, rank = snap.memo("object_seen_and_rank", lambda: _object_seen_and_rank(snap))
+            return rank[rows], -seen[rows]
+        ranks = snap.memo("id_rank", lambda: _id_ranks(snap))
+        ids = np.fromiter((ranks[i] for i in table.ids), dtype=np.int64, count=len(table))
+        objs = snap.objects
+        seen_list = [
+            o.observation_count if (o := objs.get(i)) is not None else 0 for i in table.ids
         ]
-        rank = snap.memo("id_rank", lambda: _id_ranks(snap))
-        ids = np.fromiter((rank[i] for i in table.ids), dtype=np.int64, count=len(table))
-        return np.lexsort((ids, -np.asarray(seen), -table.named_sum(), -table.scores(), other))
+        return ids, -np.asarray(seen_list, dtype=np.int64)
+
+    def _object_rows(self, table: ScoreTable) -> np.ndarray | None:
+        """Snapshot object rows of the table's candidates (None unless all are objects)."""
+        index = self.snap.obj_index
+        rows = np.fromiter((index.get(i, -1) for i in table.ids), dtype=np.int64, count=len(table))
+        return rows if not len(rows) or rows.min() >= 0 else None
 
     def _leading(self, spec: NodeSpec, table: ScoreTable) -> list[str]:
         """The candidates that lead on everything but relations (on the allowed floors
@@ -302,6 +320,9 @@ class Scorer:
 
     def _on_levels(self, levels: frozenset[int], table: ScoreTable) -> np.ndarray:
         """Whether each row's floor level is one of ``levels``."""
+        rows = self._object_rows(table)
+        if rows is not None:  # objects: the snapshot's level column (-1: unknown, never allowed)
+            return np.isin(self.snap.level[rows], np.fromiter(levels, dtype=int))
         level_of = self.snap.level_of
         return np.fromiter((level_of(i) in levels for i in table.ids), dtype=bool, count=len(table))
 
@@ -681,6 +702,14 @@ class Scorer:
             cand.terms[con.id].why = why
 
 
+def _object_seen_and_rank(snap: MapSnapshot) -> tuple[np.ndarray, np.ndarray]:
+    """Per snapshot object row: its observation count and its id's place in the sorted
+    ids of all nodes."""
+    ranks = _id_ranks(snap)
+    seen = np.array([snap.objects[i].observation_count for i in snap.obj_ids], dtype=np.int64)
+    return seen, np.array([ranks[i] for i in snap.obj_ids], dtype=np.int64)
+
+
 def _id_ranks(snap: MapSnapshot) -> dict[str, int]:
     """Every node id of ``snap`` → its place in sorted order (the last tie-break of a
     ranking, as comparing the ids would give)."""
@@ -716,8 +745,11 @@ def _compared(
     return kept
 
 
-def landmark_quality(spec: NodeSpec, ranked: list[Scored], limit: int = 50) -> Landmarks:
+def landmark_quality(spec: NodeSpec, ranked: Sequence[Scored], limit: int = 50) -> Landmarks:
     """Landmark candidates with quality ``S(n) / max S`` in (0, 1], best first."""
     top = spec.max_score()
-    out = [(c.id, min(1.0, c.score / top)) for c in ranked if c.h_floor and c.score > 0.0]
-    return out[:limit]
+    if isinstance(ranked, RankedRows):
+        kept = ranked.positive(limit)
+    else:
+        kept = [c for c in ranked if c.h_floor and c.score > 0.0][:limit]
+    return [(c.id, min(1.0, c.score / top)) for c in kept]
