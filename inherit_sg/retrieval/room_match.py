@@ -213,20 +213,12 @@ def _by_embedding(out: Matches, words: list[str], snap: MapSnapshot, sim: Phrase
             )
 
 
-def match_rooms(
-    words: list[str],
-    rtype: str | None,
-    snap: MapSnapshot,
-    sim: PhraseSimilarity,
-    *,
-    negated: bool = False,
-    beside: str = "",
-    opening: bool = False,
-) -> Matches:
-    """Room id → (similarity, reason) for a request naming room type ``rtype`` (None when
-    its words name no type) with ``words``; see the module docstring for the steps.
-    ``negated``: the constraint excludes the rooms ("not in the kitchen"); ``opening``:
-    the rooms that open onto a matched room match as well ("the door to the toilet")."""
+def _rooms_by_type(
+    words: list[str], rtype: str | None, snap: MapSnapshot, negated: bool
+) -> tuple[Matches, frozenset[str]]:
+    """Steps 1-3 (label, alternatives, aliases) over every room, and the rooms whose
+    label names the type asked for. They read only the snapshot and the vocabulary it
+    was built with, so :func:`match_rooms` keeps them per snapshot."""
     out: Matches = {}
     named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
     # "den" names a family room and a TV room alike (``also`` in rooms.toml).
@@ -246,6 +238,26 @@ def match_rooms(
         found = _by_alias(rid, rtype, named, types, with_related=not negated)
         if found is not None and found[0] >= MIN_MATCH:
             out[rid] = found
+    return out, frozenset(labelled)
+
+
+def match_rooms(
+    words: list[str],
+    rtype: str | None,
+    snap: MapSnapshot,
+    sim: PhraseSimilarity,
+    *,
+    negated: bool = False,
+    beside: str = "",
+    opening: bool = False,
+) -> Matches:
+    """Room id → (similarity, reason) for a request naming room type ``rtype`` (None when
+    its words name no type) with ``words``; see the module docstring for the steps.
+    ``negated``: the constraint excludes the rooms ("not in the kitchen"); ``opening``:
+    the rooms that open onto a matched room match as well ("the door to the toilet")."""
+    key = ("rooms_by_type", tuple(words), rtype, negated)
+    typed, labelled = snap.memo(key, lambda: _rooms_by_type(words, rtype, snap, negated))
+    out = dict(typed)  # the steps below change it in place
     qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
     if not negated and qualifier is None and not beside:
         _prefer_labelled(out, labelled)  # (a qualifier or a neighbour says which instead)
@@ -260,7 +272,7 @@ def match_rooms(
     return out
 
 
-def _prefer_labelled(out: Matches, labelled: set[str]) -> None:
+def _prefer_labelled(out: Matches, labelled: frozenset[str]) -> None:
     """When some rooms' labels name the type asked for (``labelled``), the rooms that
     only may be one (an alternative, an alias's related type) keep
     :data:`UNLABELLED_SHARE` of their similarity: "the family room" is the room the map

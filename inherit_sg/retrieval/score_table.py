@@ -57,6 +57,8 @@ class ScoreTable:
         self.row_of = {node_id: i for i, node_id in enumerate(ids)}
         self.columns: dict[str, Column] = {}
         self.h_floor = np.ones(len(ids), dtype=int)
+        # snapshot object row of each candidate (-1: no object), set by the scorer
+        self.obj_rows: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.ids)

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -254,7 +254,7 @@ class Scorer:
             if isinstance(con, RelationConstraint):
                 table.add(con)
             elif not isinstance(con, Superlative):
-                sims, whys = self._column(spec, con, table.ids, cands)
+                sims, whys = self._column(spec, con, table, cands)
                 table.add(con, sims, whys)
         if spec.image is not None:
             sims = [cands.visual_sim.get(i, 0.0) for i in table.ids]
@@ -298,9 +298,14 @@ class Scorer:
         return ids, -np.asarray(seen_list, dtype=np.int64)
 
     def _object_rows(self, table: ScoreTable) -> np.ndarray | None:
-        """Snapshot object rows of the table's candidates (None unless all are objects)."""
-        index = self.snap.obj_index
-        rows = np.fromiter((index.get(i, -1) for i in table.ids), dtype=np.int64, count=len(table))
+        """Snapshot object rows of the table's candidates (None unless all are objects;
+        worked out once per table)."""
+        if table.obj_rows is None:
+            index = self.snap.obj_index
+            table.obj_rows = np.fromiter(
+                (index.get(i, -1) for i in table.ids), dtype=np.int64, count=len(table)
+            )
+        rows = table.obj_rows
         return rows if not len(rows) or rows.min() >= 0 else None
 
     def _leading(self, spec: NodeSpec, table: ScoreTable) -> list[str]:
@@ -328,38 +333,40 @@ class Scorer:
 
     # ------------------------------------------------------------- per kind
     def _column(
-        self, spec: NodeSpec, con: Constraint, ids: list[str], cands: Candidates
-    ) -> tuple[list[float], list[str]]:
-        """Sim and reason of ``con`` for every candidate in ``ids``. Label, function,
-        room and area terms depend only on the candidate's label / place: each distinct
-        one is worked out once."""
+        self, spec: NodeSpec, con: Constraint, table: ScoreTable, cands: Candidates
+    ) -> tuple[Iterable[float], list[str]]:
+        """Sim and reason of ``con`` for every row of ``table``. Label, function, room
+        and area terms depend only on the candidate's label / place: each distinct one
+        is worked out once (for objects, through the snapshot's code columns)."""
         snap = self.snap
+        rows = self._object_rows(table)
         if isinstance(con, LabelConstraint | FunctionConstraint):
+            if rows is not None and not cands.text_sim:
+                labels, codes = snap.memo("label_codes", lambda: _codes(snap, "label"))
+                return _by_code(
+                    rows, codes, labels, lambda k: self._label_sim(spec, con, k, k, 0.0)
+                )
             objs = snap.objects
             pairs = [
                 (o.label, o.label)
                 if (o := objs.get(i)) is not None
                 else (i, getattr(snap.node(i), "label", ""))
-                for i in ids
+                for i in table.ids
             ]
             texts = cands.text_sim
-            if texts:
-                found = [
-                    self._label_sim(spec, con, key, label, texts.get(i, 0.0))
-                    for i, (key, label) in zip(ids, pairs, strict=True)
-                ]
-            else:
-                label_of = dict(pairs)
-                found = self._by_key(
-                    [key for key, _ in pairs],
-                    lambda k: self._label_sim(spec, con, k, label_of[k], 0.0),
-                )
+            found = [
+                self._label_sim(spec, con, key, label, texts.get(i, 0.0))
+                for i, (key, label) in zip(table.ids, pairs, strict=True)
+            ]
         elif con.kind in ("room", "area"):
-            places = snap.room_of if con.kind == "room" else snap.area_of
-            keys = [places.get(i) or "" for i in ids]
+            if rows is not None:
+                places, codes = snap.memo(("place_codes", con.kind), lambda: _codes(snap, con.kind))
+                return _by_code(rows, codes, places, lambda k: self._place_sim(spec, con, k))
+            places_of = snap.room_of if con.kind == "room" else snap.area_of
+            keys = [places_of.get(i) or "" for i in table.ids]
             found = self._by_key(keys, lambda k: self._place_sim(spec, con, k))
         else:
-            found = [self._sim(spec, con, i, cands) for i in ids]
+            found = [self._sim(spec, con, i, cands) for i in table.ids]
         return [s for s, _ in found], [w for _, w in found]
 
     @staticmethod
@@ -700,6 +707,35 @@ class Scorer:
         for (cand, _), sim, why in zip(placed, ranked.sims, ranked.whys, strict=True):
             cand.terms[con.id].sim = sim
             cand.terms[con.id].why = why
+
+
+def _codes(snap: MapSnapshot, what: str) -> tuple[list[str], np.ndarray]:
+    """The distinct labels (``what`` = ``label``) or rooms / areas (``room``, ``area``;
+    ``""`` for none) of the snapshot's objects, and each object row's index into them."""
+    if what == "label":
+        values = [snap.objects[i].label for i in snap.obj_ids]
+    else:
+        places = snap.room_of if what == "room" else snap.area_of
+        values = [places.get(i) or "" for i in snap.obj_ids]
+    names = list(dict.fromkeys(values))
+    index = {name: k for k, name in enumerate(names)}
+    return names, np.array([index[v] for v in values], dtype=np.int64).reshape(-1)
+
+
+def _by_code(
+    rows: np.ndarray,
+    codes: np.ndarray,
+    names: list[str],
+    make: Callable[[str], tuple[float, str]],
+) -> tuple[np.ndarray, list[str]]:
+    """Sims and reasons of object ``rows`` by their code in ``codes`` (into ``names``):
+    ``make`` runs once per distinct name present."""
+    mine = codes[rows]
+    sims = np.zeros(len(names))
+    whys = [""] * len(names)
+    for k in np.unique(mine).tolist():
+        sims[k], whys[k] = make(names[k])
+    return sims[mine], [whys[k] for k in mine.tolist()]
 
 
 def _object_seen_and_rank(snap: MapSnapshot) -> tuple[np.ndarray, np.ndarray]:
