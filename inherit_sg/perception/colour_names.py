@@ -14,6 +14,7 @@ quartile, so a shiny black lamp is named black rather than grey.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -178,9 +179,11 @@ NEIGHBOUR_MAX = 0.5
 NEIGHBOUR_DE = 40.0
 
 
+@functools.lru_cache(maxsize=4096)
 def name_distance(a: str, b: str) -> float:
     """Smallest CIELAB distance between the prototypes of colour names ``a`` and ``b``
-    (inf when either is not a palette name)."""
+    (inf when either is not a palette name; remembered per pair: scoring asks it for
+    every candidate of a colour request)."""
     rows_a = [i for i, n in enumerate(_PROTO_NAMES) if n == a]
     rows_b = [i for i, n in enumerate(_PROTO_NAMES) if n == b]
     if not rows_a or not rows_b:

@@ -5,6 +5,11 @@ full-text steps are fallbacks that run only when the steps before them found not
 (a word the lexicon does not know, a label the map spells differently). Node ids the
 store returns but the snapshot does not know (a write raced with the request) are
 ignored.
+
+Label selection (``CYPHER_OBJECTS_BY_LABEL``) is answered from the snapshot's label index:
+Kuzu has no secondary index, so the statement scans the whole Object table (about 10 ms
+at 100k objects) to return what the snapshot of the same map version holds, in the same
+order. Other statements run in Kuzu, their ids read through Arrow.
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ import numpy as np
 from inherit_sg.errors import MapError
 from inherit_sg.mapping.relations import NEAR_GAP
 from inherit_sg.retrieval.graph_checks import Landmarks
-from inherit_sg.retrieval.plan import NodeSpec, Step
+from inherit_sg.retrieval.plan import CYPHER_OBJECTS_BY_LABEL, NodeSpec, Step
 from inherit_sg.retrieval.similarity import TEXT_COS_HI, TEXT_COS_LO, PhraseSimilarity, graded
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from inherit_sg.store import MapStore
@@ -96,9 +101,9 @@ class CandidateGenerator:
         if not ids:
             return
         assert step.cypher is not None
-        for row in self.store.cypher(step.cypher, {"landmarks": ids}).rows:
-            if str(row[0]) in self.snap.objects:
-                out.add(str(row[0]), "RELATION neighbour")
+        for node_id in self.store.cypher_column(step.cypher, {"landmarks": ids}):
+            if str(node_id) in self.snap.objects:
+                out.add(str(node_id), "RELATION neighbour")
         snap = self.snap
         for lid in ids:
             j = snap.obj_index.get(lid)
@@ -115,6 +120,14 @@ class CandidateGenerator:
                 if i != j and snap.obj_ids[i] not in out.found_by:
                     out.add(snap.obj_ids[i], "close to a landmark")
 
+    def _select(self, step: Step, layer: str) -> list[str]:
+        """Ids a ``cypher`` step selects that the snapshot knows, in the store's order."""
+        assert step.cypher is not None
+        if step.cypher == CYPHER_OBJECTS_BY_LABEL and layer == "object":
+            return self.snap.objects_with_labels(list(step.params["labels"]))
+        ids = [str(i) for i in self.store.cypher_column(step.cypher, step.params)]
+        return [i for i in ids if _known(self.snap, layer, i)]
+
     def _run(self, step: Step, spec: NodeSpec, out: Candidates) -> None:
         layer = spec.layer
         if step.op == "pinned":
@@ -124,9 +137,8 @@ class CandidateGenerator:
         elif step.op == "cypher":
             assert step.cypher is not None
             found = out.found_by
-            for row in self.store.cypher(step.cypher, step.params).rows:
-                node_id = str(row[0])
-                if node_id not in found and _known(self.snap, layer, node_id):
+            for node_id in self._select(step, layer):
+                if node_id not in found:
                     found[node_id] = ["cypher"]
         elif step.op == "visual":
             assert spec.image is not None

@@ -7,7 +7,7 @@ landmark candidates are shared with every spec below it, so a landmark's own ord
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 from inherit_sg.retrieval.candidates import Candidates
 from inherit_sg.retrieval.graph_checks import Landmarks
@@ -18,7 +18,9 @@ from inherit_sg.retrieval.scoring import Scored, Scorer, landmark_quality
 Generate = Callable[[NodeSpec, dict[str, Landmarks]], Candidates]
 
 
-def rank_spec(target: NodeSpec, scorer: Scorer, generate: Generate, log: list[str]) -> list[Scored]:
+def rank_spec(
+    target: NodeSpec, scorer: Scorer, generate: Generate, log: list[str]
+) -> Sequence[Scored]:
     """Ranked candidates of ``target``; candidate and scoring notes go to ``log``."""
     snap = scorer.snap
 
@@ -30,7 +32,7 @@ def rank_spec(target: NodeSpec, scorer: Scorer, generate: Generate, log: list[st
         log.append(f"{sub.key}: {len(found)} landmark candidates ({shown or 'none'})")
         return found
 
-    def evaluate(spec: NodeSpec, shared: dict[str, Landmarks]) -> list[Scored]:
+    def evaluate(spec: NodeSpec, shared: dict[str, Landmarks]) -> Sequence[Scored]:
         if VIEWPOINT in spec.landmarks:
             shared = {VIEWPOINT: landmark(spec.landmarks[VIEWPOINT], {})}
         marks: dict[str, Landmarks] = {}

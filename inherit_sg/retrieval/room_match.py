@@ -129,6 +129,17 @@ def room_type_sims(
     return out
 
 
+def all_room_type_sims(
+    snap: MapSnapshot, *, negated: bool = False
+) -> dict[str, dict[str, tuple[float, str]]]:
+    """:func:`room_type_sims` of every room, by sorted room id (worked out once per
+    snapshot: a large map has thousands of rooms and every room constraint reads them)."""
+    return snap.memo(
+        ("room_type_sims", negated),
+        lambda: {rid: room_type_sims(rid, snap, negated=negated) for rid in sorted(snap.rooms)},
+    )
+
+
 def _by_type(rid: str, wanted: str, types: dict[str, tuple[float, str]]) -> tuple[float, str]:
     value, how = types[wanted]
     step = "label" if how.startswith("its label") else "alternatives"
@@ -202,6 +213,34 @@ def _by_embedding(out: Matches, words: list[str], snap: MapSnapshot, sim: Phrase
             )
 
 
+def _rooms_by_type(
+    words: list[str], rtype: str | None, snap: MapSnapshot, negated: bool
+) -> tuple[Matches, frozenset[str]]:
+    """Steps 1-3 (label, alternatives, aliases) over every room, and the rooms whose
+    label names the type asked for. They read only the snapshot and the vocabulary it
+    was built with, so :func:`match_rooms` keeps them per snapshot."""
+    out: Matches = {}
+    named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
+    # "den" names a family room and a TV room alike (``also`` in rooms.toml).
+    wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
+    labelled: set[str] = set()  # rooms whose label names the type asked for
+    for rid, types in all_room_type_sims(snap, negated=negated).items():
+        exact = [
+            (_by_type(rid, t, types), types[t][1].startswith("its label"))
+            for t in dict.fromkeys(wanted)
+            if t in types
+        ]
+        if exact:
+            out[rid], by_label = max(exact, key=lambda hit: hit[0][0])
+            if by_label:
+                labelled.add(rid)
+            continue
+        found = _by_alias(rid, rtype, named, types, with_related=not negated)
+        if found is not None and found[0] >= MIN_MATCH:
+            out[rid] = found
+    return out, frozenset(labelled)
+
+
 def match_rooms(
     words: list[str],
     rtype: str | None,
@@ -216,26 +255,9 @@ def match_rooms(
     its words name no type) with ``words``; see the module docstring for the steps.
     ``negated``: the constraint excludes the rooms ("not in the kitchen"); ``opening``:
     the rooms that open onto a matched room match as well ("the door to the toilet")."""
-    out: Matches = {}
-    named = {w: t for w in words if w for t in [room_type(w)] if t is not None and t != rtype}
-    # "den" names a family room and a TV room alike (``also`` in rooms.toml).
-    wanted = [rtype, *(t for w in words if w for t in also_named(w))] if rtype else []
-    labelled: set[str] = set()  # rooms whose label names the type asked for
-    for rid in sorted(snap.rooms):
-        types = room_type_sims(rid, snap, negated=negated)
-        exact = [
-            (_by_type(rid, t, types), types[t][1].startswith("its label"))
-            for t in dict.fromkeys(wanted)
-            if t in types
-        ]
-        if exact:
-            out[rid], by_label = max(exact, key=lambda hit: hit[0][0])
-            if by_label:
-                labelled.add(rid)
-            continue
-        found = _by_alias(rid, rtype, named, types, with_related=not negated)
-        if found is not None and found[0] >= MIN_MATCH:
-            out[rid] = found
+    key = ("rooms_by_type", tuple(words), rtype, negated)
+    typed, labelled = snap.memo(key, lambda: _rooms_by_type(words, rtype, snap, negated))
+    out = dict(typed)  # the steps below change it in place
     qualifier = next((q for w in words if w for q in [room_qualifier(w)] if q), None)
     if not negated and qualifier is None and not beside:
         _prefer_labelled(out, labelled)  # (a qualifier or a neighbour says which instead)
@@ -250,7 +272,7 @@ def match_rooms(
     return out
 
 
-def _prefer_labelled(out: Matches, labelled: set[str]) -> None:
+def _prefer_labelled(out: Matches, labelled: frozenset[str]) -> None:
     """When some rooms' labels name the type asked for (``labelled``), the rooms that
     only may be one (an alternative, an alias's related type) keep
     :data:`UNLABELLED_SHARE` of their similarity: "the family room" is the room the map

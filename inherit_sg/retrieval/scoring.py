@@ -31,9 +31,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -57,6 +55,9 @@ from inherit_sg.retrieval.ordinals import place
 from inherit_sg.retrieval.parts import part_sim
 from inherit_sg.retrieval.placement import PlacementMeter
 from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, VIEWPOINT, NodeSpec
+from inherit_sg.retrieval.score_table import RankedRows, ScoreTable
+from inherit_sg.retrieval.scored import Scored
+from inherit_sg.retrieval.scored import Term as Term  # re-exported: callers import it here
 from inherit_sg.retrieval.sizes import (
     linear_size,
     measured_in_views,
@@ -99,55 +100,6 @@ MAX_MEASURES = frozenset({"largest", "tallest", "highest", "widest", "farthest"}
 ORDINAL_FALLOFF = 0.5
 MIDDLE_RUNNER_UP = 0.9
 _WORD = re.compile(r"[a-z]+")
-
-
-@dataclass
-class Term:
-    """One constraint's contribution ``p · w · Sim`` to a candidate's score."""
-
-    cid: str
-    kind: str
-    weight: float
-    polarity: int
-    sim: float
-    why: str = ""
-
-    @property
-    def value(self) -> float:
-        """Signed contribution to the score."""
-        return self.polarity * self.weight * self.sim
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-able form."""
-        return {
-            "kind": self.kind,
-            "weight": round(self.weight, 4),
-            "polarity": self.polarity,
-            "sim": round(self.sim, 4),
-            "term": round(self.value, 4),
-            "why": self.why,
-        }
-
-
-@dataclass
-class Scored:
-    """A candidate with its score terms."""
-
-    id: str
-    terms: dict[str, Term] = field(default_factory=dict)
-    h_floor: int = 1
-    found_by: list[str] = field(default_factory=list)
-
-    @property
-    def score(self) -> float:
-        """``H_floor · Σ terms``."""
-        return self.h_floor * sum(t.value for t in self.terms.values())
-
-    def sim(self, kind: str) -> float:
-        """Largest similarity among the positive terms of ``kind`` (0 when none)."""
-        return max(
-            (t.sim for t in self.terms.values() if t.kind == kind and t.polarity > 0), default=0.0
-        )
 
 
 def _named_sim(cand: Scored) -> float:
@@ -285,8 +237,9 @@ class Scorer:
 
     def score(
         self, spec: NodeSpec, cands: Candidates, landmarks: dict[str, Landmarks]
-    ) -> tuple[list[Scored], list[str]]:
-        """Ranked candidates of ``spec`` and notes for the trace."""
+    ) -> tuple[Sequence[Scored], list[str]]:
+        """Ranked candidates of ``spec`` and notes for the trace (a read-only sequence
+        whose candidates are made when read)."""
         notes: list[str] = []
         finder = ViewFinder(
             self.snap,
@@ -296,45 +249,162 @@ class Scorer:
             keyframes=self.keyframes,
         )
         viewing = _Viewing(finder, spec.key, notes)
-        out = [Scored(i, found_by=how) for i, how in cands.found_by.items()]
-        scored = [c for c in spec.scored() if not isinstance(c, Superlative)]
-        for cand in out:
-            for con in scored:
-                if isinstance(con, RelationConstraint):
-                    sim, why = 0.0, ""
-                else:
-                    sim, why = self._sim(spec, con, cand.id, cands)
-                cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, sim, why)
-            if spec.image is not None:
-                sim = cands.visual_sim.get(cand.id, 0.0)
-                why = f"appearance similarity {sim:.2f}"
-                cand.terms[IMAGE_TERM] = Term(IMAGE_TERM, "visual", IMAGE_WEIGHT, 1, sim, why)
-        spatial = self._relations(spec, out, landmarks, viewing)
-        for cand in out:
-            for cid, found in spatial.items():
-                term = cand.terms[cid]
-                term.sim, term.why = found.get(cand.id, (0.0, ""))
-        self._heights(spec, out)
-        self._floor(spec, out, notes)
+        table = ScoreTable(list(cands.found_by), list(cands.found_by.values()))
+        for con in spec.scored():
+            if isinstance(con, RelationConstraint):
+                table.add(con)
+            elif not isinstance(con, Superlative):
+                sims, whys = self._column(spec, con, table, cands)
+                table.add(con, sims, whys)
+        if spec.image is not None:
+            sims = [cands.visual_sim.get(i, 0.0) for i in table.ids]
+            whys = [f"appearance similarity {sim:.2f}" for sim in sims]
+            table.add_term(IMAGE_TERM, "visual", IMAGE_WEIGHT, 1, sims, whys)
+        for cid, found in self._relations(spec, table, landmarks, viewing).items():
+            table.set(cid, found)
+        self._heights(spec, table)
+        self._floor(spec, table, notes)
         for sup in spec.scored():
             if isinstance(sup, Superlative):
-                self._superlative(sup, out, landmarks.get(sup.id, ()), notes, viewing)
-        out.sort(key=_kind_first(out, self.snap))
-        return out, notes
+                self._superlative(sup, table, landmarks.get(sup.id, ()), notes, viewing)
+        return table.ranked(self._order(table)), notes
 
-    def _leading(self, spec: NodeSpec, out: list[Scored]) -> list[str]:
+    def _order(self, table: ScoreTable) -> np.ndarray:
+        """Row order of the ranking: what is not the kind asked for after what surely
+        is (see :func:`_kind_first`), then best score, best label / function match, most
+        observations and id (:func:`_rank_key`)."""
+        live = table.h_floor != 0
+        named = table.named_best()
+        other = np.zeros(len(table), dtype=bool)
+        if np.any(live & (named >= SURE_KIND)):
+            other = live & (named < STRONG_MATCH)
+        keys = self._seen_and_rank(table)
+        return np.lexsort((*keys, -table.named_sum(), -table.scores(), other))
+
+    def _seen_and_rank(self, table: ScoreTable) -> tuple[np.ndarray, np.ndarray]:
+        """The last two sort keys per row: the id's sorted position, and minus the
+        observation count (0 for nodes that are no objects)."""
+        snap = self.snap
+        rows = self._object_rows(table)
+        if rows is not None:
+            seen, rank = snap.memo("object_seen_and_rank", lambda: _object_seen_and_rank(snap))
+            return rank[rows], -seen[rows]
+        ranks = snap.memo("id_rank", lambda: _id_ranks(snap))
+        ids = np.fromiter((ranks[i] for i in table.ids), dtype=np.int64, count=len(table))
+        objs = snap.objects
+        seen_list = [
+            o.observation_count if (o := objs.get(i)) is not None else 0 for i in table.ids
+        ]
+        return ids, -np.asarray(seen_list, dtype=np.int64)
+
+    def _object_rows(self, table: ScoreTable) -> np.ndarray | None:
+        """Snapshot object rows of the table's candidates (None unless all are objects;
+        worked out once per table)."""
+        if table.obj_rows is None:
+            index = self.snap.obj_index
+            table.obj_rows = np.fromiter(
+                (index.get(i, -1) for i in table.ids), dtype=np.int64, count=len(table)
+            )
+        rows = table.obj_rows
+        return rows if not len(rows) or rows.min() >= 0 else None
+
+    def _leading(self, spec: NodeSpec, table: ScoreTable) -> list[str]:
         """The candidates that lead on everything but relations (on the allowed floors
         when any is there): the group a viewer-relative relation is seen for."""
-        live = out
+        rows = np.arange(len(table))
         if spec.levels is not None:
-            live = [c for c in out if self.snap.level_of(c.id) in spec.levels] or out
-        partial = {c.id: sum(t.value for t in c.terms.values()) for c in live}
-        if not partial:
+            allowed = np.flatnonzero(self._on_levels(spec.levels, table))
+            rows = allowed if len(allowed) else rows
+        if not len(rows):
             return []
-        best = max(partial.values())
-        return [i for i, v in partial.items() if v >= best - SUPERLATIVE_TIER]
+        partial = table.totals()[rows]
+        best = partial.max()
+        return [
+            table.ids[r] for r, v in zip(rows, partial, strict=True) if v >= best - SUPERLATIVE_TIER
+        ]
+
+    def _on_levels(self, levels: frozenset[int], table: ScoreTable) -> np.ndarray:
+        """Whether each row's floor level is one of ``levels``."""
+        rows = self._object_rows(table)
+        if rows is not None:  # objects: the snapshot's level column (-1: unknown, never allowed)
+            return np.isin(self.snap.level[rows], np.fromiter(levels, dtype=int))
+        level_of = self.snap.level_of
+        return np.fromiter((level_of(i) in levels for i in table.ids), dtype=bool, count=len(table))
 
     # ------------------------------------------------------------- per kind
+    def _column(
+        self, spec: NodeSpec, con: Constraint, table: ScoreTable, cands: Candidates
+    ) -> tuple[Iterable[float], list[str]]:
+        """Sim and reason of ``con`` for every row of ``table``. Label, function, room
+        and area terms depend only on the candidate's label / place: each distinct one
+        is worked out once (for objects, through the snapshot's code columns)."""
+        snap = self.snap
+        rows = self._object_rows(table)
+        if isinstance(con, LabelConstraint | FunctionConstraint):
+            if rows is not None and not cands.text_sim:
+                labels, codes = snap.memo("label_codes", lambda: _codes(snap, "label"))
+                return _by_code(
+                    rows, codes, labels, lambda k: self._label_sim(spec, con, k, k, 0.0)
+                )
+            objs = snap.objects
+            pairs = [
+                (o.label, o.label)
+                if (o := objs.get(i)) is not None
+                else (i, getattr(snap.node(i), "label", ""))
+                for i in table.ids
+            ]
+            texts = cands.text_sim
+            found = [
+                self._label_sim(spec, con, key, label, texts.get(i, 0.0))
+                for i, (key, label) in zip(table.ids, pairs, strict=True)
+            ]
+        elif con.kind in ("room", "area"):
+            if rows is not None:
+                places, codes = snap.memo(("place_codes", con.kind), lambda: _codes(snap, con.kind))
+                return _by_code(rows, codes, places, lambda k: self._place_sim(spec, con, k))
+            places_of = snap.room_of if con.kind == "room" else snap.area_of
+            keys = [places_of.get(i) or "" for i in table.ids]
+            found = self._by_key(keys, lambda k: self._place_sim(spec, con, k))
+        else:
+            found = [self._sim(spec, con, i, cands) for i in table.ids]
+        return [s for s, _ in found], [w for _, w in found]
+
+    @staticmethod
+    def _by_key(
+        keys: list[str], make: Callable[[str], tuple[float, str]]
+    ) -> list[tuple[float, str]]:
+        cache: dict[str, tuple[float, str]] = {}
+        out = []
+        for key in keys:
+            hit = cache.get(key)
+            if hit is None:
+                hit = cache[key] = make(key)
+            out.append(hit)
+        return out
+
+    @staticmethod
+    def _label_sim(
+        spec: NodeSpec, con: Constraint, key: str, label: str, text_sim: float
+    ) -> tuple[float, str]:
+        """Label / function sim of a node (``key``: its label, or its id when it is no
+        object; ``label``: its label), or the text evidence of the candidate steps
+        when that is stronger."""
+        sim, why = spec.matches.get(con.id, {}).get(key, (0.0, ""))
+        text = text_sim * LABEL_SEMANTIC_MAX
+        if text > sim and not con.negated:
+            return text, "found by text search"
+        return sim, why or f"label '{label}' does not match"
+
+    def _place_sim(self, spec: NodeSpec, con: Constraint, place: str) -> tuple[float, str]:
+        """Room / area sim of a node in ``place`` (empty: in none)."""
+        if not place:
+            return 0.0, f"not in any {con.kind}"
+        hit = spec.matches.get(con.id, {}).get(place)
+        if hit is not None:
+            return hit
+        node = self.snap.rooms.get(place) or self.snap.areas.get(place)
+        return 0.0, f"in {place} ({node.label if node is not None else '?'})"
+
     def _sim(
         self,
         spec: NodeSpec,
@@ -346,20 +416,11 @@ class Scorer:
         if isinstance(con, LabelConstraint | FunctionConstraint):
             node = snap.node(node_id)
             key = node.label if isinstance(node, ObjectNode) else node_id
-            sim, why = spec.matches.get(con.id, {}).get(key, (0.0, ""))
-            text = cands.text_sim.get(node_id, 0.0) * LABEL_SEMANTIC_MAX
-            if text > sim and not con.negated:
-                return text, "found by text search"
-            return sim, why or f"label '{getattr(node, 'label', '')}' does not match"
+            label = getattr(node, "label", "")
+            return self._label_sim(spec, con, key, label, cands.text_sim.get(node_id, 0.0))
         if con.kind in ("room", "area"):
             place = (snap.room_of if con.kind == "room" else snap.area_of).get(node_id)
-            if place is None:
-                return 0.0, f"not in any {con.kind}"
-            hit = spec.matches.get(con.id, {}).get(place)
-            if hit is not None:
-                return hit
-            node = snap.rooms.get(place) or snap.areas.get(place)
-            return 0.0, f"in {place} ({node.label if node is not None else '?'})"
+            return self._place_sim(spec, con, place or "")
         if isinstance(con, AttributeConstraint):
             return attribute_sim(snap, node_id, con)
         if isinstance(con, PlacementConstraint):
@@ -370,14 +431,14 @@ class Scorer:
     def _relations(
         self,
         spec: NodeSpec,
-        out: list[Scored],
+        table: ScoreTable,
         landmarks: dict[str, Landmarks],
         viewing: _Viewing,
     ) -> dict[str, dict[str, tuple[float, str]]]:
         """GraphRAG checks of every relation constraint for all candidates at once;
         viewer-relative predicates are decided geometrically when a viewer can be
         formed (else approximated by 'near', as the checker does)."""
-        ids = [c.id for c in out]
+        ids = table.ids
         found: dict[str, dict[str, tuple[float, str]]] = {}
         for con in spec.scored():
             if not isinstance(con, RelationConstraint):
@@ -389,7 +450,7 @@ class Scorer:
                 continue
             view = None
             if con.predicate in VIEW_PREDICATES and spec.layer == "object":
-                view = viewing.view(self._leading(spec, out), con.id)
+                view = viewing.view(self._leading(spec, table), con.id)
             if view is not None:
                 found[con.id] = directional_all(self.snap, view, ids, con.predicate, first)
             else:
@@ -402,48 +463,43 @@ class Scorer:
                 found[con.id] = {**near, **held}
         return found
 
-    def _heights(self, spec: NodeSpec, out: list[Scored]) -> None:
+    def _heights(self, spec: NodeSpec, table: ScoreTable) -> None:
         """Height words without a stated height: rank candidates by box height."""
         if not any(isinstance(c, AttributeConstraint) and c.key == "height" for c in spec.scored()):
             return
-        heights = {c.id: self._height(c.id) for c in out}
-        known = [h for h in heights.values() if h is not None]
+        heights = [self._height(i) for i in table.ids]
+        known = [h for h in heights if h is not None]
         if not known:
             return
         lo, hi = min(known), max(known)
         for con in spec.scored():
             if not (isinstance(con, AttributeConstraint) and con.key == "height"):
                 continue
-            for cand in out:
-                term, h = cand.terms[con.id], heights[cand.id]
-                if term.sim > 0.0 or h is None:
+            col = table.columns[con.id]
+            for row, h in enumerate(heights):
+                if col.sims[row] > 0.0 or h is None:
                     continue
                 rel = 1.0 if hi - lo < 1e-6 else (h - lo) / (hi - lo)
-                term.sim = rel if con.value == "tall" else 1.0 - rel
-                term.why = f"box height {h:.2f} m among {lo:.2f}–{hi:.2f} m"
+                col.sims[row] = rel if con.value == "tall" else 1.0 - rel
+                col.whys[row] = f"box height {h:.2f} m among {lo:.2f}–{hi:.2f} m"
 
     def _height(self, node_id: str) -> float | None:
         node = self.snap.node(node_id)
         return float(node.bbox.size[2]) if isinstance(node, ObjectNode) else None
 
-    def _floor(self, spec: NodeSpec, out: list[Scored], notes: list[str]) -> None:
+    def _floor(self, spec: NodeSpec, table: ScoreTable, notes: list[str]) -> None:
         """Apply H_floor. When no candidate on the allowed floors matches (is what was
         named — a strong label or function match — or, for unnamed targets, scores
         above zero) but candidates elsewhere do, the filter is lifted: the global
         fallback."""
         if spec.levels is None:
             return
-        for cand in out:
-            cand.h_floor = int(self.snap.level_of(cand.id) in spec.levels)
+        table.h_floor = self._on_levels(spec.levels, table).astype(int)
         named = any(c.kind in ("label", "function") and not c.negated for c in spec.scored())
-
-        def matches(c: Scored) -> bool:
-            return _named_sim(c) >= STRONG_MATCH if named else c.score > 0.0
-
-        if any(matches(c) for c in out if c.h_floor) or not any(matches(c) for c in out):
+        matches = table.named_best() >= STRONG_MATCH if named else table.scores() > 0.0
+        if np.any(matches & (table.h_floor != 0)) or not np.any(matches):
             return
-        for cand in out:
-            cand.h_floor = 1
+        table.h_floor = np.ones(len(table), dtype=int)
         notes.append(
             f"{spec.key}: nothing matching on levels {sorted(spec.levels)}; "
             "floor filter lifted (global fallback)"
@@ -504,18 +560,33 @@ class Scorer:
     def _superlative(
         self,
         con: Superlative,
-        out: list[Scored],
+        table: ScoreTable,
         landmarks: Landmarks,
         notes: list[str],
         viewing: _Viewing,
     ) -> None:
-        for cand in out:
-            cand.terms[con.id] = Term(con.id, con.kind, con.weight, con.polarity, 0.0, "")
-        live = [c for c in out if c.h_floor]
-        if not live:
+        """Rank the best-scoring tier by ``con``'s measure: the tier's rows are worked
+        on as :class:`Scored` s and their ``con`` terms written back to the table."""
+        table.add(con)
+        live = np.flatnonzero(table.h_floor != 0)
+        if not len(live):
             return
-        best = max(c.score for c in live)
-        tier = [c for c in live if c.score >= best - SUPERLATIVE_TIER]
+        scores = table.scores()[live]
+        best = scores.max()
+        rows = [int(r) for r, s in zip(live, scores, strict=True) if s >= best - SUPERLATIVE_TIER]
+        tier = [table.scored(r) for r in rows]
+        self._rank_tier(con, tier, landmarks, notes, viewing)
+        table.write_back(con.id, rows, tier)
+
+    def _rank_tier(
+        self,
+        con: Superlative,
+        tier: list[Scored],
+        landmarks: Landmarks,
+        notes: list[str],
+        viewing: _Viewing,
+    ) -> None:
+        """Set the ``con`` terms of the tier's candidates by its measure."""
         if con.measure in ("ordinal", "middle"):
             self._by_position(
                 con, self._near_viewpoint(con, tier, notes, viewing), landmarks, notes, viewing
@@ -638,6 +709,50 @@ class Scorer:
             cand.terms[con.id].why = why
 
 
+def _codes(snap: MapSnapshot, what: str) -> tuple[list[str], np.ndarray]:
+    """The distinct labels (``what`` = ``label``) or rooms / areas (``room``, ``area``;
+    ``""`` for none) of the snapshot's objects, and each object row's index into them."""
+    if what == "label":
+        values = [snap.objects[i].label for i in snap.obj_ids]
+    else:
+        places = snap.room_of if what == "room" else snap.area_of
+        values = [places.get(i) or "" for i in snap.obj_ids]
+    names = list(dict.fromkeys(values))
+    index = {name: k for k, name in enumerate(names)}
+    return names, np.array([index[v] for v in values], dtype=np.int64).reshape(-1)
+
+
+def _by_code(
+    rows: np.ndarray,
+    codes: np.ndarray,
+    names: list[str],
+    make: Callable[[str], tuple[float, str]],
+) -> tuple[np.ndarray, list[str]]:
+    """Sims and reasons of object ``rows`` by their code in ``codes`` (into ``names``):
+    ``make`` runs once per distinct name present."""
+    mine = codes[rows]
+    sims = np.zeros(len(names))
+    whys = [""] * len(names)
+    for k in np.unique(mine).tolist():
+        sims[k], whys[k] = make(names[k])
+    return sims[mine], [whys[k] for k in mine.tolist()]
+
+
+def _object_seen_and_rank(snap: MapSnapshot) -> tuple[np.ndarray, np.ndarray]:
+    """Per snapshot object row: its observation count and its id's place in the sorted
+    ids of all nodes."""
+    ranks = _id_ranks(snap)
+    seen = np.array([snap.objects[i].observation_count for i in snap.obj_ids], dtype=np.int64)
+    return seen, np.array([ranks[i] for i in snap.obj_ids], dtype=np.int64)
+
+
+def _id_ranks(snap: MapSnapshot) -> dict[str, int]:
+    """Every node id of ``snap`` → its place in sorted order (the last tie-break of a
+    ranking, as comparing the ids would give)."""
+    ids = sorted({*snap.objects, *snap.rooms, *snap.areas, *snap.floors})
+    return {node_id: i for i, node_id in enumerate(ids)}
+
+
 def best_landmarks(landmarks: Landmarks) -> list[str]:
     """The landmark ids whose quality is within :data:`LANDMARK_TIER` of the best."""
     top = max((q for _, q in landmarks), default=0.0) - LANDMARK_TIER
@@ -666,8 +781,11 @@ def _compared(
     return kept
 
 
-def landmark_quality(spec: NodeSpec, ranked: list[Scored], limit: int = 50) -> Landmarks:
+def landmark_quality(spec: NodeSpec, ranked: Sequence[Scored], limit: int = 50) -> Landmarks:
     """Landmark candidates with quality ``S(n) / max S`` in (0, 1], best first."""
     top = spec.max_score()
-    out = [(c.id, min(1.0, c.score / top)) for c in ranked if c.h_floor and c.score > 0.0]
-    return out[:limit]
+    if isinstance(ranked, RankedRows):
+        kept = ranked.positive(limit)
+    else:
+        kept = [c for c in ranked if c.h_floor and c.score > 0.0][:limit]
+    return [(c.id, min(1.0, c.score / top)) for c in kept]

@@ -10,9 +10,10 @@ the map's files change (:func:`map_version`): the engine checks the version, a f
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -31,6 +32,7 @@ from inherit_sg.store import MapStore
 from inherit_sg.vocab.rooms import room_type
 
 Version = tuple[int, ...]
+T = TypeVar("T")
 _VERSION_FILES = ("graph.kuzu", "graph.kuzu.wal", "map.json")
 
 
@@ -97,6 +99,10 @@ class MapSnapshot:
     level: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     # median linear size per object label: the reference of size words ("a large mug")
     kind_sizes: dict[str, float] = field(default_factory=dict)
+    # object ids per stored label, in snapshot (= graph store scan) order
+    by_label: dict[str, list[str]] = field(default_factory=dict)
+    # values derived from this version on first use (see :meth:`memo`)
+    _memo: dict[Any, Any] = field(default_factory=dict, repr=False)
 
     # ------------------------------------------------------------------ lookups
     @property
@@ -150,9 +156,26 @@ class MapSnapshot:
         """Ids of objects whose canonical labels meet ``labels``."""
         return [i for i, c in self.canon.items() if labels.intersection(c)]
 
-    def raw_labels(self) -> set[str]:
-        """Distinct object labels as stored."""
-        return {o.label for o in self.objects.values()}
+    def raw_labels(self) -> frozenset[str]:
+        """Distinct object labels as stored (indexed once per snapshot)."""
+        return frozenset(self.by_label)
+
+    def objects_with_labels(self, labels: list[str]) -> list[str]:
+        """Ids of the objects whose stored label is one of ``labels``, in snapshot
+        order: what ``MATCH (o:Object) WHERE o.label IN $labels`` (live objects)
+        returns, without scanning the table."""
+        found = [oid for label in set(labels) for oid in self.by_label.get(label, ())]
+        found.sort(key=self.obj_index.__getitem__)
+        return found
+
+    def memo(self, key: Any, make: Callable[[], T]) -> T:
+        """A value derived from this snapshot only, made on first use and kept while
+        the snapshot lives (per-room type similarities, cleaned labels, ...). ``key``
+        must say everything ``make`` depends on besides the snapshot."""
+        try:
+            return self._memo[key]
+        except KeyError:
+            return self._memo.setdefault(key, make())
 
 
 def _relations(graph: SceneGraph) -> dict[str, dict[str, set[str]]]:
@@ -180,6 +203,10 @@ def _index_objects(snap: MapSnapshot) -> None:
     levels = [snap.level_of(o.id) for o in objs]
     snap.level = np.array([-1 if lv is None else lv for lv in levels], dtype=int)
     snap.kind_sizes = kind_sizes(objs)
+    by_label: dict[str, list[str]] = {}
+    for o in objs:
+        by_label.setdefault(o.label, []).append(o.id)
+    snap.by_label = by_label
 
 
 def build_snapshot(

@@ -3,7 +3,10 @@ found, and why each ranked candidate was kept or dropped."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from inherit_sg.retrieval.query import ParsedQuery, describe
+from inherit_sg.retrieval.score_table import RankedRows
 from inherit_sg.retrieval.scoring import Scored
 from inherit_sg.retrieval.snapshot import MapSnapshot
 
@@ -53,7 +56,7 @@ def _why_below(cand: Scored, top: Scored) -> str:
     return "ranks lower: " + ", ".join(worse)
 
 
-def explain_ranking(snap: MapSnapshot, ranked: list[Scored], k: int) -> list[str]:
+def explain_ranking(snap: MapSnapshot, ranked: Sequence[Scored], k: int) -> list[str]:
     """Lines for the ranking: the top candidates with their terms, why the others rank
     below the first, and a count of the rest."""
     if not ranked:
@@ -67,7 +70,10 @@ def explain_ranking(snap: MapSnapshot, ranked: list[Scored], k: int) -> list[str
             lines.append(f"{head} kept: {_terms(cand)}")
         else:
             lines.append(f"{head} {_why_below(cand, top)}")
-    dropped = sum(1 for c in ranked if not c.h_floor)
+    if isinstance(ranked, RankedRows):
+        dropped = ranked.floor_dropped()
+    else:
+        dropped = sum(1 for c in ranked if not c.h_floor)
     if dropped:
         lines.append(f"{dropped} candidates dropped by the floor filter")
     if len(ranked) > EXPLAINED:

@@ -17,7 +17,7 @@ import kuzu
 
 from inherit_sg.errors import CypherError, MapError, QueryTimeoutError
 from inherit_sg.store.cypher_lex import split_statements
-from inherit_sg.store.kuzu_util import next_row, run, translate
+from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, next_row, run, translate
 from inherit_sg.store.readonly import check_read_only
 from inherit_sg.store.skip_guard import check_skip
 
@@ -135,6 +135,22 @@ class KuzuGraph:
                 return self._fetch(conn, query, params, max_rows, timeout_s)
         with self.writer() as conn:
             return self._fetch(conn, query, params, max_rows, timeout_s)
+
+    def column(self, query: str, params: dict[str, Any] | None = None) -> list[Any]:
+        """The first column of a read-only statement's rows, read through Arrow: many
+        rows cost one conversion instead of a Python call per row."""
+        check_read_only(query)
+        with self.snapshot() as conn:
+            try:
+                res = conn.execute(query, params or {})
+                assert isinstance(res, kuzu.QueryResult)
+                table = res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
+                res.close()
+            except RuntimeError as exc:
+                raise translate(exc, query) from None
+            except (ValueError, TypeError) as exc:  # parameters Kuzu cannot bind
+                raise CypherError(f"query parameters: {exc}") from None
+        return table.column(0).to_pylist() if table.num_columns else []
 
     @staticmethod
     def _fetch(

@@ -437,6 +437,11 @@ class MapStore:
         with self._g().snapshot() as conn:
             return graph_read.read_sessions(conn)
 
+    def cypher_column(self, query: str, params: dict[str, Any] | None = None) -> list[Any]:
+        """The first column of a read-only Cypher statement's result (retrieval's
+        candidate steps: many ids at once, fetched through Arrow)."""
+        return self._g().column(query, params)
+
     def cypher(
         self,
         query: str,
