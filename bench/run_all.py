@@ -13,7 +13,7 @@ mapping figures are measured too. Results go to ``bench/results/run_all/<name>.j
 the page gets tables and figures (``docs/img/bench_*.png``), including latency by map
 size from ``bench/results/retrieval.json``.
 
-    python bench/run_all.py [--max-queries 400] [--no-ablations] [--work DIR]
+    python bench/run_all.py [--max-queries 400] [--no-ablations] [--work DIR] [--ray]
     python bench/run_all.py --report-only      # re-render the page from the JSON files
 """
 
@@ -111,18 +111,39 @@ def make_dataset(spec: DatasetSpec, out: Path) -> bool:
     return True
 
 
+def _bench_cmd(datasets: list[Path], out: Path, args: argparse.Namespace) -> list[str]:
+    cmd = [sys.executable, "-m", "inherit_sg.cli.main", "bench"]
+    for dataset in datasets:
+        cmd += ["--dataset", str(dataset)]
+    cmd += ["--out", str(out), "--max-queries", str(args.max_queries)]
+    return cmd + (["--no-ablations"] if args.no_ablations else [])
+
+
+def _labelled(spec: DatasetSpec, found: Path) -> Path:
+    """The bench JSON ``found`` of ``spec``, labelled, as ``RESULTS/NAME.json``."""
+    doc = json.loads(found.read_text(encoding="utf-8"))
+    doc.update(label=spec.name, description=spec.description)
+    out = RESULTS / f"{spec.name}.json"
+    out.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+    return out
+
+
 def run_one(spec: DatasetSpec, dataset: Path, args: argparse.Namespace) -> Path:
     """``inherit-sg bench`` on one dataset in its own process; the JSON path."""
     out = RESULTS / f"{spec.name}.json"
-    cmd = [sys.executable, "-m", "inherit_sg.cli.main", "bench", "--dataset", str(dataset)]
-    cmd += ["--out", str(out), "--max-queries", str(args.max_queries)]
-    if args.no_ablations:
-        cmd.append("--no-ablations")
+    subprocess.run(_bench_cmd([dataset], out, args), check=True, cwd=ROOT)
+    return _labelled(spec, out)
+
+
+def run_on_ray(specs: list[DatasetSpec], work: Path, args: argparse.Namespace) -> list[Path]:
+    """``inherit-sg bench --ray`` on every dataset at once (one Ray task each); the JSON
+    paths (the same documents as one by one)."""
+    out = work / "bench-ray"
+    cmd = [*_bench_cmd([work / spec.name for spec in specs], out, args), "--ray"]
+    if args.ray_address:
+        cmd += ["--ray-address", args.ray_address]
     subprocess.run(cmd, check=True, cwd=ROOT)
-    doc = json.loads(out.read_text(encoding="utf-8"))
-    doc.update(label=spec.name, description=spec.description)
-    out.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
-    return out
+    return [_labelled(spec, out / f"{spec.name}.json") for spec in specs]
 
 
 def load_docs() -> list[dict[str, Any]]:
@@ -224,6 +245,8 @@ def main() -> None:
     ap.add_argument("--work", type=Path, help="keep (and reuse) datasets in this folder")
     ap.add_argument("--only", default="", help="comma-separated dataset names to run")
     ap.add_argument("--no-request-sets", action="store_true", help="skip parse and MP3D sets")
+    ap.add_argument("--ray", action="store_true", help="bench the datasets in parallel on Ray")
+    ap.add_argument("--ray-address", help="with --ray: a running cluster (default: local)")
     args = ap.parse_args()
     if not args.report_only:
         RESULTS.mkdir(parents=True, exist_ok=True)
@@ -233,6 +256,7 @@ def main() -> None:
             unknown = only - {spec.name for spec in DATASETS}
             if unknown:
                 sys.exit(f"unknown dataset name(s): {', '.join(sorted(unknown))}")
+            ready: list[DatasetSpec] = []
             for spec in DATASETS:
                 if only and spec.name not in only:
                     continue
@@ -242,9 +266,17 @@ def main() -> None:
                 if not make_dataset(spec, dataset):
                     print(f"== {spec.name}: skipped (source not found)", flush=True)
                     continue
+                if args.ray:
+                    ready.append(spec)
+                    continue
                 print(f"== {spec.name}: bench", flush=True)
                 out = run_one(spec, dataset, args)
                 print(f"== {spec.name}: {out} ({time.perf_counter() - t0:.0f} s)", flush=True)
+            if ready:
+                t0 = time.perf_counter()
+                print(f"== bench on Ray: {', '.join(s.name for s in ready)}", flush=True)
+                outs = run_on_ray(ready, work, args)
+                print(f"== {len(outs)} results ({time.perf_counter() - t0:.0f} s)", flush=True)
             if not args.no_request_sets:
                 run_request_sets(work)
     docs = load_docs()
