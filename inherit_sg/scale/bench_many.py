@@ -20,7 +20,7 @@ from typing import Any
 
 from inherit_sg.benchmark.runner import BenchOptions, run_benchmark
 from inherit_sg.json_values import jsonable
-from inherit_sg.scale.cluster import ray_session
+from inherit_sg.scale.cluster import as_completed, error_text, ray_session
 
 DEFAULT_RETRIES = 1
 
@@ -67,28 +67,21 @@ def bench_many(
         import ray
 
         task = ray.remote(num_cpus=1, max_retries=max_retries, retry_exceptions=True)(run_bench_job)
-        refs = {task.remote(job): i for i, job in enumerate(jobs)}
+        refs = [task.remote(job) for job in jobs]
         if on_start is not None:
             on_start(len(refs))
         records: dict[int, dict[str, Any]] = {}
-        pending = list(refs)
-        while pending:
-            done, pending = ray.wait(pending, num_returns=1)
-            for ref in done:
-                i = refs[ref]
-                try:
-                    record = ray.get(ref)
-                except Exception as exc:  # retries exhausted: report, go on
-                    first = str(exc).strip().splitlines()[-1] if str(exc).strip() else ""
-                    record = {
-                        "dataset": str(jobs[i].options.dataset),
-                        "out": str(jobs[i].out),
-                        "status": "failed",
-                        "error": f"{type(exc).__name__}: {first}"[:300],
-                    }
-                records[i] = record
-                if on_done is not None:
-                    on_done(record)
+        for i, record, error in as_completed(refs):
+            if error is not None:  # retries exhausted: report, go on
+                record = {
+                    "dataset": str(jobs[i].options.dataset),
+                    "out": str(jobs[i].out),
+                    "status": "failed",
+                    "error": error_text(error),
+                }
+            records[i] = record
+            if on_done is not None:
+                on_done(record)
     results = [records[i] for i in range(len(jobs))]
     failed = sum(1 for r in results if r["status"] != "done")
     return {

@@ -21,7 +21,7 @@ from typing import Any
 from inherit_sg.config import Config, load_config
 from inherit_sg.errors import InputError
 from inherit_sg.scale.atomic import FAULT_VARIABLE, build_job, clean_up
-from inherit_sg.scale.cluster import ray_session
+from inherit_sg.scale.cluster import as_completed, error_text, ray_session
 from inherit_sg.scale.manifest import MapJob
 
 DEFAULT_RETRIES = 2
@@ -43,16 +43,6 @@ def run_job(
 def failed_record(job: MapJob, root: str | Path, error: str) -> dict[str, Any]:
     """The summary row of a map that was not built."""
     return {"map": job.name, "path": str(Path(root) / job.name), "status": "failed", "error": error}
-
-
-def _error_text(exc: BaseException) -> str:
-    """A one-line reason from a Ray error (the task's own exception where it has one)."""
-    cause = getattr(exc, "cause", None)
-    err = cause if isinstance(cause, BaseException) else exc
-    first = (str(err).strip().splitlines() or [""])[0]
-    if type(err).__name__ == "WorkerCrashedError" or "worker died" in first.lower():
-        first = "the worker process died (killed or out of memory) on every attempt"
-    return f"{type(err).__name__}: {first}"[:300]
 
 
 def build_many(
@@ -83,24 +73,19 @@ def build_many(
         task = ray.remote(num_cpus=cpus_per_map, max_retries=max_retries, retry_exceptions=True)(
             run_job
         )
-        refs = {task.remote(job, str(base), run_id, cfg, fault): job for job in jobs}
+        refs = [task.remote(job, str(base), run_id, cfg, fault) for job in jobs]
         if on_start is not None:
             on_start(len(refs))
         records: dict[str, dict[str, Any]] = {}
-        pending = list(refs)
-        while pending:
-            done, pending = ray.wait(pending, num_returns=1)
-            for ref in done:
-                job = refs[ref]
-                try:
-                    record = ray.get(ref)
-                except Exception as exc:  # retries exhausted: report, never raise
-                    record = failed_record(job, base, _error_text(exc))
-                if record["status"] != "built":
-                    clean_up(base, job.name, run_id)
-                records[job.name] = record
-                if on_done is not None:
-                    on_done(record)
+        for i, record, error in as_completed(refs):
+            job = jobs[i]
+            if error is not None:  # retries exhausted: report, never raise
+                record = failed_record(job, base, error_text(error))
+            if record["status"] != "built":
+                clean_up(base, job.name, run_id)
+            records[job.name] = record
+            if on_done is not None:
+                on_done(record)
     for job in jobs:  # nothing half-written stays
         clean_up(base, job.name, run_id)
     maps = [records[job.name] for job in jobs]

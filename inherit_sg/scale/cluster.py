@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
@@ -52,3 +52,31 @@ def ray_session(
     finally:
         if owned:
             ray.shutdown()
+
+
+def as_completed(refs: Sequence[Any]) -> Iterator[tuple[int, Any, BaseException | None]]:
+    """``(index, result, None)`` or ``(index, None, error)`` for each Ray object ref, in
+    the order the tasks finish (an error: the task failed after its retries)."""
+    import ray
+
+    index = {ref: i for i, ref in enumerate(refs)}
+    pending = list(refs)
+    while pending:
+        done, pending = ray.wait(pending, num_returns=1)
+        for ref in done:
+            try:
+                result = ray.get(ref)
+            except Exception as exc:  # the caller reports it; the other tasks go on
+                yield index[ref], None, exc
+            else:
+                yield index[ref], result, None
+
+
+def error_text(exc: BaseException) -> str:
+    """A one-line reason from a Ray error (the task's own exception where it has one)."""
+    cause = getattr(exc, "cause", None)
+    err = cause if isinstance(cause, BaseException) else exc
+    first = (str(err).strip().splitlines() or [""])[0]
+    if type(err).__name__ == "WorkerCrashedError" or "worker died" in first.lower():
+        first = "the worker process died (killed or out of memory) on every attempt"
+    return f"{type(err).__name__}: {first}"[:300]
