@@ -56,12 +56,12 @@ def test_bench_on_ray_writes_what_bench_writes_alone(walks: list[Path], tmp_path
     ours = docs["walk3"]
     assert _keys(ours) == _keys(reference)
     assert ours["accuracy"]["ours"]["overall"]["n"] == reference["accuracy"]["ours"]["overall"]["n"]
-    # the same objects are mapped (rooms may differ: the global update's timing is free)
-    objects = ("mapping", "quality", "objects")
-    got, want = ours, reference
-    for key in objects:
-        got, want = got[key], want[key]
-    assert got == want
+    # the same objects are mapped (rooms, and the relations counted within them, may
+    # differ: the global update's timing is free)
+    got = ours["mapping"]["quality"]["objects"]
+    want = reference["mapping"]["quality"]["objects"]
+    same = {k for k in want if not k.startswith("relation")}
+    assert same and {k: got[k] for k in same} == {k: want[k] for k in same}
     assert docs["walk4"]["accuracy"]["ours"]["overall"]["n"] > 0
 
 
