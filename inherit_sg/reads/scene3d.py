@@ -62,6 +62,11 @@ def mask_outlines(mask: RoomMask) -> list[list[list[float]]]:
     return [poly for _, poly in out]
 
 
+def drawn_predicates(near: bool) -> tuple[str, ...]:
+    """The relation predicates a 3D view draws (``near`` only when asked for)."""
+    return (*DRAWN_PREDICATES, "near") if near else DRAWN_PREDICATES
+
+
 def _floors(service: MapService, floor_id: str | None) -> list[Scene3DFloor]:
     query = "MATCH (f:Floor) RETURN f.id, f.label, f.level, f.z_min, f.z_max ORDER BY f.level"
     floors = [
@@ -144,7 +149,7 @@ def build_scene3d(
         floor_level(service, floor_id)
     objects = _objects(service, floor_id)
     rooms = _rooms(service, floor_id)
-    predicates = (*DRAWN_PREDICATES, "near") if near else DRAWN_PREDICATES
+    predicates = drawn_predicates(near)
     return Scene3D(
         floors=_floors(service, floor_id),
         rooms=rooms,
@@ -162,7 +167,7 @@ def scene_from_graph(graph: SceneGraph, *, near: bool = False) -> Scene3D:
     objects: list[ObjectNode] = sorted(
         (o for o in graph.objects() if o.status is not ObjectStatus.REMOVED), key=lambda o: o.id
     )
-    predicates = (*DRAWN_PREDICATES, "near") if near else DRAWN_PREDICATES
+    predicates = drawn_predicates(near)
     kept = {o.id for o in objects}
     room_ids = {r.id for r in rooms}
     relations = [

@@ -23,6 +23,7 @@ Timelines: ``frame`` (frame index) and ``capture_time`` (seconds of the recordin
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -32,7 +33,7 @@ from inherit_sg.errors import InputError, ModelUnavailableError
 from inherit_sg.model import Frame, SceneGraph
 
 if TYPE_CHECKING:
-    from inherit_sg.reads.models import Scene3D
+    from inherit_sg.reads.models import Scene3D, Scene3DObject
 
 APPLICATION_ID = "inherit-sg"
 ANSWER_RGB = (214, 40, 40)
@@ -57,6 +58,13 @@ def room_colour(room_id: str | None) -> tuple[int, int, int]:
         return UNASSIGNED_RGB
     h = hashlib.blake2b(room_id.encode(), digest_size=3).digest()
     return (96 + h[0] % 144, 96 + h[1] % 144, 96 + h[2] % 144)
+
+
+def _box_arrays(boxes: Sequence[Scene3DObject]) -> tuple[np.ndarray, np.ndarray]:
+    """Centres and half sizes (at least 1 cm) of object boxes, as (n, 3) arrays."""
+    lo = np.array([o.bbox_min for o in boxes], dtype=np.float32).reshape(-1, 3)
+    hi = np.array([o.bbox_max for o in boxes], dtype=np.float32).reshape(-1, 3)
+    return (lo + hi) / 2, np.maximum((hi - lo) / 2, 0.01)
 
 
 def _is_url(target: str) -> bool:
@@ -143,19 +151,18 @@ class RerunLog:
                 colours.append(room_colour(room.id))
         rec.log("world/rooms", rr.LineStrips3D(strips, labels=labels, colors=colours))
         boxes = scene.objects
-        lo = np.array([o.bbox_min for o in boxes], dtype=np.float32).reshape(-1, 3)
-        hi = np.array([o.bbox_max for o in boxes], dtype=np.float32).reshape(-1, 3)
+        centres, half_sizes = _box_arrays(boxes)
         rec.log(
             "world/objects",
             rr.Boxes3D(
-                centers=(lo + hi) / 2,
-                half_sizes=np.maximum((hi - lo) / 2, 0.01),
+                centers=centres,
+                half_sizes=half_sizes,
                 labels=[o.label for o in boxes],
                 colors=[room_colour(o.room_id) for o in boxes],
                 show_labels=False,
             ),
         )
-        centre = {o.id: ((np.array(o.bbox_min) + np.array(o.bbox_max)) / 2).tolist() for o in boxes}
+        centre = {o.id: c.tolist() for o, c in zip(boxes, centres, strict=True)}
         rels = [r for r in scene.relations if r.source in centre and r.target in centre]
         rec.log(
             "world/relations",
@@ -192,13 +199,12 @@ class RerunLog:
             ("world/query/candidates", [i for i in others if i in boxes], CANDIDATE_RGB),
             ("world/query/answer", [answer] if answer in boxes else [], ANSWER_RGB),
         ):
-            lo = np.array([boxes[i].bbox_min for i in ids], dtype=np.float32).reshape(-1, 3)
-            hi = np.array([boxes[i].bbox_max for i in ids], dtype=np.float32).reshape(-1, 3)
+            centres, half_sizes = _box_arrays([boxes[i] for i in ids])
             rec.log(
                 path,
                 rr.Boxes3D(
-                    centers=(lo + hi) / 2,
-                    half_sizes=np.maximum((hi - lo) / 2, 0.01) * 1.05,
+                    centers=centres,
+                    half_sizes=half_sizes * 1.05,
                     labels=[f"{boxes[i].label} ({i})" for i in ids],
                     colors=[colour] * len(ids),
                     radii=0.02,

@@ -104,6 +104,7 @@ class Lexicon:
     have_like: frozenset[str]
     other_verbs: frozenset[str]
     light_verbs: frozenset[str]
+    mental_verbs: frozenset[str]
     locative_verbs: frozenset[str]
     locative_prepositions: frozenset[str]
     copular_verbs: frozenset[str]
@@ -207,6 +208,7 @@ def lexicon() -> Lexicon:
         have_like=frozenset(_list(words, "have_like", where)),
         other_verbs=frozenset(_list(verbs, "other", where)),
         light_verbs=frozenset(_list(verbs, "light", where)),
+        mental_verbs=frozenset(_list(verbs, "mental", where)),
         locative_verbs=frozenset(_list(verbs, "locative", where)),
         locative_prepositions=frozenset(_list(verbs, "locative_prepositions", where)),
         copular_verbs=frozenset(_list(verbs, "copular", where)),

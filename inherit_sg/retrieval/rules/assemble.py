@@ -113,7 +113,7 @@ def _lift_proximity_superlatives(constraints: list[Constraint]) -> list[Constrai
             if picks:
                 rest = tuple(c for c in con.landmark.constraints if c not in picks)
                 con = replace(con, landmark=replace(con.landmark, constraints=rest))
-                lifted = list[Constraint](picks[:1])
+                lifted.append(picks[0])
         out.append(con)
     return out + lifted
 

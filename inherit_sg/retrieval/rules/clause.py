@@ -220,10 +220,6 @@ def _related(head: NP, other: NP) -> bool:
     return False
 
 
-# verbs whose object is what the speaker knows or says, not what they seek
-_MENTAL_VERBS = frozenset({"know", "remember", "forget", "forgot", "recall", "think", "say"})
-
-
 class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
@@ -763,7 +759,7 @@ class ClauseParser(Grammar):
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
         # "i don't know the name, the thing above the tv": the object of a verb of
         # knowing or saying in a filler phrase (not of "where can i find")
-        mental = prev.has("filler") and prev.text.split()[-1] in _MENTAL_VERBS
+        mental = prev.has("filler") and prev.text.split()[-1] in lexicon().mental_verbs
         after_verb = after_verb or mental
         after_purpose = prev.has("for", "while") and bool(out.functions)
         if after_verb or after_purpose:
