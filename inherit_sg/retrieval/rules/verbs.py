@@ -46,7 +46,7 @@ _VERB_CONTEXT = (
 _PLACING_VERBS = frozenset(
     {"put", "place", "set", "drop", "throw", "toss", "dump", "stick", "stash", "hang", "chuck"}
 )
-_VERB_FILLERS = ("want", "need", "like", "possible", "wish")
+_VERB_FILLERS = ("want", "need", "like", "possible", "wish", "mood", "fancy")
 # Prepositions inside a verb's object ("a cup of tea", "a place for my coat").
 _OBJECT_PREPOSITIONS = frozenset({"of", "for", "to", "with", "about"})
 
