@@ -555,3 +555,18 @@ def test_http_refuses_an_exposed_host_without_keys(root: Path) -> None:
         timeout=120,
     )
     assert done.returncode == 2 and "refusing to start" in done.stderr.decode()
+
+
+def test_the_sdk_is_imported_only_by_the_mcp_command(monkeypatch: pytest.MonkeyPatch) -> None:
+    code = "import sys, inherit_sg.cli.main; print(sorted(m for m in sys.modules if m == 'mcp'))"
+    done = subprocess.run(
+        [sys.executable, "-c", code], env=server_env(), cwd=REPO_ROOT, capture_output=True
+    )
+    assert done.returncode == 0 and done.stdout.decode().strip() == "[]", done.stderr
+    from typer.testing import CliRunner
+
+    from inherit_sg.cli.main import app
+
+    monkeypatch.setitem(sys.modules, "mcp.server.mcpserver", None)  # as if not installed
+    out = CliRunner().invoke(app, ["mcp", "--map", "/nonexistent"])
+    assert out.exit_code == 2 and "pip install 'inherit-sg[mcp]'" in out.output
