@@ -22,7 +22,13 @@ from inherit_sg.errors import ConfigError
 ENV_PREFIX = "INHERIT_SG_"
 # INHERIT_SG_* variables that are not config fields (the config file, test tooling)
 NON_CONFIG_ENV = frozenset(
-    {f"{ENV_PREFIX}CONFIG", f"{ENV_PREFIX}ARTIFACTS", f"{ENV_PREFIX}REQUIRE_BROWSER"}
+    {
+        f"{ENV_PREFIX}CONFIG",
+        f"{ENV_PREFIX}ARTIFACTS",
+        f"{ENV_PREFIX}REQUIRE_BROWSER",
+        # the API key of an MCP server over stdio (inherit_sg/mcp_server/access.py)
+        f"{ENV_PREFIX}MCP_KEY",
+    }
 )
 DEFAULT_CONFIG_FILE = "inherit-sg.toml"
 

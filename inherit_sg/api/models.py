@@ -9,6 +9,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from inherit_sg.retrieval.viewer import MAX_COORDINATE, ViewerPose
 
 MAX_CYPHER_ROWS = 10_000
+MAX_CYPHER_TIMEOUT_S = 300
 
 Coordinate = Annotated[float, Field(allow_inf_nan=False, ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
 
@@ -67,7 +68,7 @@ class CypherRequest(BaseModel):
     timeout_s: float | None = Field(
         None,
         gt=0,
-        le=300,
+        le=MAX_CYPHER_TIMEOUT_S,
         description="Time limit in seconds (default: service.cypher_timeout_s); 408 past it.",
     )
 

@@ -101,14 +101,19 @@ def needs_write(method: str, path: str) -> bool:
     return not (method.upper() == "POST" and any(p.match(path) for p in READ_POSTS))
 
 
+def parse_bearer(value: str | None) -> str | None:
+    """The token of an ``Authorization`` header value ``Bearer <token>``, or None."""
+    scheme, _, token = (value or "").strip().partition(" ")
+    if scheme.lower() == "bearer" and token.strip():
+        return token.strip()
+    return None
+
+
 def bearer_token(scope: Scope) -> str | None:
     """The token of an ``Authorization: Bearer`` header, or None."""
     for name, value in scope.get("headers", ()):
         if name.lower() == b"authorization":
-            scheme, _, token = value.decode("latin-1").strip().partition(" ")
-            if scheme.lower() == "bearer" and token.strip():
-                return token.strip()
-            return None
+            return parse_bearer(value.decode("latin-1"))
     return None
 
 

@@ -16,6 +16,7 @@ from inherit_sg.cli import (
     bench_cmd,
     demo_cmd,
     map_cmd,
+    mcp_cmd,
     parse_cmd,
     query_cmd,
     reads_cmd,
@@ -41,6 +42,7 @@ app.command("parse")(parse_cmd.parse)
 app.command("demo")(demo_cmd.demo)
 app.command("query")(query_cmd.query)
 app.command("serve")(serve_cmd.serve)
+app.command("mcp")(mcp_cmd.mcp)
 app.command("bench")(bench_cmd.bench)
 app.command("ls")(reads_cmd.ls)
 app.command("show")(reads_cmd.show)

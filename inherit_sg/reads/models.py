@@ -286,3 +286,77 @@ class Scene3D(BaseModel):
     objects: list[Scene3DObject]
     relations: list[Scene3DRelation]
     connections: list[Scene3DConnection]
+
+
+class NodeLink(BaseModel):
+    """An edge between a node and another node of its layer: a spatial ``RELATION``
+    between objects, a door (``CONNECTS``) between rooms, ``STAIRS`` between floors."""
+
+    kind: str = Field(description="RELATION, CONNECTS or STAIRS.")
+    direction: str = Field(description="'out' when the node is the edge's source, else 'in'.")
+    predicate: str | None = Field(None, description="The spatial predicate (RELATION).")
+    confidence: float | None = None
+    other_id: str
+    other_label: str
+    door: list[float] | None = Field(None, description="The door's position (CONNECTS).")
+
+
+class NodeDetail(BaseModel):
+    """Any scene-graph node (floor, room, area or object): its properties, its ancestors
+    and direct children, its edges within its layer and the keyframes that show it."""
+
+    id: str
+    layer: str = Field(description="floor, room, area or object.")
+    label: str
+    attributes: dict[str, Any] = Field(
+        description="The node's properties in its graph table (room masks and keyframe "
+        "id lists left out; JSON text columns decoded)."
+    )
+    hierarchy: list[HierarchyStep] = Field(
+        description="Ancestors, nearest first (area → room → floor)."
+    )
+    children: list[HierarchyStep] = Field(
+        description="Direct children: a floor's rooms, a room's areas (and its objects "
+        "outside any area), an area's objects."
+    )
+    links: list[NodeLink]
+    best_view: str | None = Field(None, description="Keyframe id of the best view, if any.")
+    keyframes: list[KeyframeRef] = Field(
+        default_factory=list, description="Keyframes an object was detected in, oldest first."
+    )
+
+
+class PropertySchema(BaseModel):
+    """One property (column) of a graph table."""
+
+    name: str
+    type: str = Field(description="Kuzu type, e.g. STRING, INT64, DOUBLE[3].")
+    primary_key: bool = False
+
+
+class TableSchema(BaseModel):
+    """One public graph table, read from the map's own catalogue."""
+
+    name: str
+    kind: str = Field(description="'node' or 'relationship'.")
+    description: str
+    source: str | None = Field(None, description="Source node table (relationships).")
+    target: str | None = Field(None, description="Target node table (relationships).")
+    properties: list[PropertySchema]
+
+
+class CypherExample(BaseModel):
+    """A read-only Cypher statement that runs on any map, with what it answers."""
+
+    question: str
+    cypher: str
+
+
+class GraphSchema(BaseModel):
+    """The public graph tables of a map with their properties, example statements and
+    the rules a statement must follow."""
+
+    nodes: list[TableSchema]
+    relationships: list[TableSchema]
+    examples: list[CypherExample]
+    notes: list[str]

@@ -1,5 +1,5 @@
-"""The REST layer only translates HTTP to MapService calls: no Cypher of its own (the one
-Cypher route forwards the user's statement) and no store access."""
+"""The REST and MCP layers only translate requests to MapService calls: no Cypher of their
+own (the one Cypher route or tool forwards the user's statement) and no store access."""
 
 from __future__ import annotations
 
@@ -7,7 +7,10 @@ import ast
 import re
 from pathlib import Path
 
+import pytest
+
 API = Path(__file__).resolve().parents[2] / "inherit_sg" / "api"
+MCP = API.parent / "mcp_server"
 CYPHER = re.compile(r"\b(MATCH|MERGE|CREATE)\b.*\b(RETURN|SET|DELETE)\b|\bMATCH\s*\(", re.S)
 
 
@@ -22,9 +25,10 @@ def _docstrings(tree: ast.AST) -> set[int]:
     return out
 
 
-def test_api_writes_no_cypher_and_never_touches_the_store() -> None:
-    files = sorted(API.glob("*.py"))
-    assert len(files) > 5, API
+@pytest.mark.parametrize("face", [API, MCP], ids=["api", "mcp_server"])
+def test_api_writes_no_cypher_and_never_touches_the_store(face: Path) -> None:
+    files = sorted(face.glob("*.py"))
+    assert len(files) > 5, face
     for path in files:
         tree = ast.parse(path.read_text(encoding="utf-8"))
         docs = _docstrings(tree)

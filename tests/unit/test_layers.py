@@ -20,6 +20,7 @@ LAYERS = {
     "retrieval": 5, "exchange": 5,
     "reads": 6, "facade": 6,
     "demo": 7, "benchmark": 7, "api": 7, "cli": 7, "viz": 7, "scale": 7,
+    "mcp_server": 7,
 }  # fmt: skip
 
 
