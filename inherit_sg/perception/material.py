@@ -46,6 +46,7 @@ MATERIAL_NAMES: tuple[str, ...] = (
     "glass",
 )
 MIN_PIXELS = 80
+MAX_SIDE = 160  # texture is read in a window of at most this many pixels a side
 _LUMA = np.array([0.2126, 0.7152, 0.0722])
 _LAGS = range(1, 6)
 WIDE = 5  # median window (pixels) of the texture residual; noise is measured with it too
@@ -116,6 +117,18 @@ def texture_residual(lum: np.ndarray, where: np.ndarray, size: int) -> np.ndarra
     return lum[where] / np.maximum(median, 1e-6) - 1.0
 
 
+def _window(occupied: np.ndarray, lo: int, hi: int) -> tuple[int, int]:
+    """At most :data:`MAX_SIDE` rows (or columns) of ``lo:hi`` around the middle of the
+    occupied ones: a surface's texture is the same all over it, and a large mask would
+    otherwise cost its whole area in median windows."""
+    if hi - lo <= MAX_SIDE:
+        return lo, hi
+    where = np.flatnonzero(occupied)
+    mid = lo + int(where[where.size // 2]) if where.size else (lo + hi) // 2
+    start = min(max(lo, mid - MAX_SIDE // 2), hi - MAX_SIDE)
+    return start, start + MAX_SIDE
+
+
 def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
     """Statistics of the pixels of ``mask`` in an (H, W, 3) uint8 image (None when too
     few pixels are left after dropping the mask's border)."""
@@ -125,6 +138,8 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
         return None
     y0, y1 = max(0, rows[0] - 4), rows[-1] + 5
     x0, x1 = max(0, cols[0] - 4), cols[-1] + 5
+    y0, y1 = _window(m[y0:y1, x0:x1].any(axis=1), y0, y1)
+    x0, x1 = _window(m[y0:y1, x0:x1].any(axis=0), x0, x1)
     m = m[y0:y1, x0:x1]
     # medians keep the step edges between differently lit faces, so that only the
     # surface's own pattern is left in the residual

@@ -189,3 +189,22 @@ def _frame(rgb: np.ndarray) -> Frame:
         pose=Pose.identity(),
         intrinsics=Intrinsics(fx=100.0, fy=100.0, cx=w / 2, cy=h / 2, width=w, height=h),
     )
+
+
+@pytest.mark.parametrize("material", ["wood", "fabric", "stone", "plastic"])
+def test_a_large_mask_is_read_in_a_window_with_the_same_result(
+    material: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A mask far larger than MAX_SIDE is read in a window around its middle: fewer
+    pixels, the same material as reading all of it."""
+    from inherit_sg.perception import material as mat
+
+    big = np.tile(_rendered(material), (8, 6, 1))  # 384 × 384 pixels
+    mask = np.zeros(big.shape[:2], dtype=bool)
+    mask[20:370, 30:380] = True
+    windowed = texture_stats(big, mask)
+    assert windowed is not None and windowed.pixels <= mat.MAX_SIDE**2
+    monkeypatch.setattr(mat, "MAX_SIDE", 10_000)
+    whole = texture_stats(big, mask)
+    assert whole is not None and whole.pixels > 4 * windowed.pixels
+    assert classify(windowed) == classify(whole) == material_name(big, mask, noise=0.0)
