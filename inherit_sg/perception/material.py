@@ -138,8 +138,8 @@ def texture_stats(rgb: np.ndarray, mask: np.ndarray) -> TextureStats | None:
         return None
     y0, y1 = max(0, rows[0] - 4), rows[-1] + 5
     x0, x1 = max(0, cols[0] - 4), cols[-1] + 5
-    y0, y1 = _window(m[y0:y1, x0:x1].any(axis=1), y0, y1)
-    x0, x1 = _window(m[y0:y1, x0:x1].any(axis=0), x0, x1)
+    y0, y1 = _window(np.asarray(m[y0:y1, x0:x1].any(axis=1)), y0, y1)
+    x0, x1 = _window(np.asarray(m[y0:y1, x0:x1].any(axis=0)), x0, x1)
     m = m[y0:y1, x0:x1]
     # medians keep the step edges between differently lit faces, so that only the
     # surface's own pattern is left in the residual
