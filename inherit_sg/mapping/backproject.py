@@ -14,6 +14,7 @@ import cv2
 import numpy as np
 
 from inherit_sg.model import BBox3D, Frame
+from inherit_sg.perception.base import mask_bbox
 
 MIN_POINTS = 20
 
@@ -60,6 +61,22 @@ def robust_box(points: np.ndarray, low: float = 2.0, high: float = 98.0) -> BBox
     return BBox3D(tuple(lo), tuple(np.maximum(hi, lo)))
 
 
+def _grown_box(mask: np.ndarray, margin: int) -> tuple[int, int, int, int] | None:
+    """Rows ``y0:y1`` and columns ``x0:x1`` of a mask's bounding box grown by
+    ``margin`` pixels (clipped to the image); None for an empty mask."""
+    box = mask_bbox(np.asarray(mask, dtype=bool))
+    if box is None:
+        return None
+    x0, y0, x1, y1 = box
+    rows, cols = mask.shape[:2]
+    return (
+        max(y0 - margin, 0),
+        min(y1 + 1 + margin, rows),
+        max(x0 - margin, 0),
+        min(x1 + 1 + margin, cols),
+    )
+
+
 def backproject_mask(
     frame: Frame,
     mask: np.ndarray,
@@ -69,17 +86,27 @@ def backproject_mask(
     mad_k: float = 3.0,
     voxel: float = 0.03,
 ) -> np.ndarray | None:
-    """World points of the masked pixels, cleaned; None when too few remain."""
-    m: np.ndarray = mask.astype(np.uint8)
+    """World points of the masked pixels, cleaned; None when too few remain.
+
+    Everything is done on the mask's bounding box (with a margin as wide as the
+    erosion, so the result is the same as on the whole frame): a mask covers a small
+    part of most frames."""
+    box = _grown_box(mask, max(erode_px, 0))
+    if box is None:
+        return None
+    y0, y1, x0, x1 = box
+    m: np.ndarray = np.ascontiguousarray(mask[y0:y1, x0:x1], dtype=np.uint8)
     if erode_px > 0:
         eroded = cv2.erode(m, np.ones((2 * erode_px + 1, 2 * erode_px + 1), np.uint8))
         if int(eroded.sum()) >= MIN_POINTS:
             m = eroded
-    depth = frame.depth
+    depth = frame.depth[y0:y1, x0:x1]
     valid = (m > 0) & (depth > 0.1) & (depth < max_depth)
     rows, cols = np.nonzero(valid)
     if len(rows) < MIN_POINTS:
         return None
+    rows, cols = rows + y0, cols + x0
+    depth = frame.depth
     z = depth[rows, cols].astype(np.float64)
     med = np.median(z)
     mad = np.median(np.abs(z - med)) * 1.4826 + 0.02
@@ -99,7 +126,9 @@ def observe(frame: Frame, mask: np.ndarray, label: str, score: float = 1.0) -> O
     if points is None or len(points) < 3:
         return None
     box = robust_box(points)
-    rows, cols = np.nonzero(mask)
+    y0, y1, x0, x1 = _grown_box(mask, 0) or (0, 0, 0, 0)
+    rows, cols = np.nonzero(mask[y0:y1, x0:x1])
+    rows, cols = rows + y0, cols + x0
     h, w = mask.shape
     offset = np.hypot(cols.mean() - (w - 1) / 2, rows.mean() - (h - 1) / 2) / np.hypot(w / 2, h / 2)
     return Observation(
@@ -107,7 +136,7 @@ def observe(frame: Frame, mask: np.ndarray, label: str, score: float = 1.0) -> O
         points=points,
         bbox=box,
         centroid=box.center,
-        pixel_count=int(mask.sum()),
+        pixel_count=len(rows),
         centre_offset=float(offset),
         score=score,
         keyframe_id=frame.frame_id,

@@ -67,6 +67,57 @@ def test_too_few_valid_pixels_gives_no_observation() -> None:
     assert observe(_frame(np.zeros((120, 160))), mask, "box") is None
 
 
+def _whole_frame_points(frame: Frame, mask: np.ndarray) -> np.ndarray | None:
+    """Back-projection worked on the whole frame, as a reference for the cropped one."""
+    import cv2
+
+    m = mask.astype(np.uint8)
+    eroded = cv2.erode(m, np.ones((5, 5), np.uint8))
+    m = eroded if int(eroded.sum()) >= 20 else m
+    rows, cols = np.nonzero((m > 0) & (frame.depth > 0.1) & (frame.depth < 8.0))
+    if len(rows) < 20:
+        return None
+    z = frame.depth[rows, cols].astype(np.float64)
+    med = np.median(z)
+    mad = np.median(np.abs(z - med)) * 1.4826 + 0.02
+    keep = np.abs(z - med) <= 3.0 * mad + 0.05 * med
+    rows, cols, z = rows[keep], cols[keep], z[keep]
+    if len(z) < 20:
+        return None
+    cam = np.stack([(cols - K.cx) / K.fx * z, (rows - K.cy) / K.fy * z, z], axis=1)
+    return voxel_downsample(frame.pose.transform_points(cam), 0.03)
+
+
+def test_backprojection_on_the_mask_box_equals_the_whole_frame() -> None:
+    """Masks touching the image border, thin ones and scattered ones: working on the
+    mask's box gives exactly the points and pixel count of working on the whole frame."""
+    rng = np.random.default_rng(3)
+    depth = rng.uniform(0.5, 6.0, (120, 160))
+    depth[rng.random((120, 160)) < 0.05] = 0.0  # holes
+    c, s_ = np.cos(0.7), np.sin(0.7)
+    pose = Pose.from_matrix([[c, -s_, 0, 1.0], [s_, c, 0, -2.0], [0, 0, 1, 0.5], [0, 0, 0, 1]])
+    frame = _frame(depth, pose)
+    masks = []
+    for y0, y1, x0, x1 in [
+        (0, 30, 0, 40),
+        (90, 120, 130, 160),
+        (10, 13, 20, 140),
+        (0, 120, 0, 160),
+    ]:
+        m = np.zeros((120, 160), bool)
+        m[y0:y1, x0:x1] = True
+        masks.append(m)
+    masks.append(rng.random((120, 160)) < 0.3)  # scattered pixels: erosion empties it
+    masks.append(np.zeros((120, 160), bool))
+    for mask in masks:
+        got, want = backproject_mask(frame, mask), _whole_frame_points(frame, mask)
+        assert (got is None) == (want is None)
+        if got is not None:
+            assert np.array_equal(got, want)
+            obs = observe(frame, mask, "thing")
+            assert obs is not None and obs.pixel_count == int(mask.sum())
+
+
 def test_voxel_downsample_and_robust_box() -> None:
     pts = np.random.default_rng(0).uniform(0, 1, (5000, 3))
     down = voxel_downsample(pts, 0.1)
