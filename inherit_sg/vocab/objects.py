@@ -16,6 +16,7 @@ The file is parsed and checked once per process; :func:`clear_caches` forgets it
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -350,10 +351,14 @@ def clear_caches() -> None:
     vocabulary.cache_clear()
 
 
-def _forms(key: str) -> tuple[str, ...]:
-    """``key`` as written, then with its last word lemmatised (when that differs)."""
+def _forms(key: str) -> Iterator[str]:
+    """``key`` as written, then with its last word lemmatised (when that differs). Lazy:
+    a phrase found as written never loads the lemmatiser (spaCy's pipeline costs a map
+    build about 300 MB when its labels are all known kinds)."""
+    yield key
     lemma = lemma_phrase(key)
-    return (key,) if lemma == key else (key, lemma)
+    if lemma != key:
+        yield lemma
 
 
 def _label(key: str, voc: ObjectVocabulary) -> str | None:

@@ -366,3 +366,23 @@ def test_missing_kinds_and_version(objects_file: Callable[[str], None]) -> None:
     objects_file('[kinds.sofa]\nsynonyms = ["couch"]\n')
     with pytest.raises(VocabularyError, match="version"):
         obj.canonical_label("couch")
+
+
+def test_known_phrases_do_not_load_the_lemmatiser() -> None:
+    """A map build names its objects with known kinds: finding them as written must not
+    load spaCy's pipeline (about 300 MB of a build's memory); only an unknown plural does."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from inherit_sg.vocab.objects import canonical_label, is_kind_of\n"
+        "assert canonical_label('door') == 'door'\n"
+        "assert canonical_label('Exterior Door') == 'exterior door'\n"
+        "assert is_kind_of('office chair', 'chair')\n"
+        "assert [canonical_label(w) for w in ('stairs', 'clothes', 'blinds')] == "
+        "['stairs', 'clothes', 'blinds']\n"
+        "assert 'spacy' not in sys.modules, 'spaCy loaded for known phrases'\n"
+        "assert canonical_label('couches') == 'sofa'\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)
