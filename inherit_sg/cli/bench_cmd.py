@@ -17,7 +17,14 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import counting_bars, handle_errors, jsonable, print_table
+from inherit_sg.cli.output import (
+    ConfigFileOption,
+    OverridesOption,
+    counting_bars,
+    handle_errors,
+    jsonable,
+    print_table,
+)
 from inherit_sg.errors import InputError
 
 if TYPE_CHECKING:
@@ -53,10 +60,8 @@ def bench(
         Path | None,
         typer.Option("--map", "-m", help="Existing map of the dataset (default: build one)."),
     ] = None,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None, typer.Option("--set", help="Config override section.field=value.")
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     no_ablations: Annotated[
         bool, typer.Option("--no-ablations", help="Skip the ablation runs.")
     ] = False,

@@ -7,7 +7,14 @@ from typing import Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import counting_bars, handle_errors, print_json, print_table
+from inherit_sg.cli.output import (
+    ConfigFileOption,
+    OverridesOption,
+    counting_bars,
+    handle_errors,
+    print_json,
+    print_table,
+)
 
 app = typer.Typer(
     name="map", help="Build and extend maps from posed RGB-D datasets.", no_args_is_help=True
@@ -36,11 +43,8 @@ def build(
     ] = "auto",
     session: Annotated[str | None, typer.Option(help="Session name (default session-N).")] = None,
     max_frames: Annotated[int | None, typer.Option(min=1, help="Only the first N frames.")] = None,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Config override section.field=value (repeatable)."),
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
     rerun: Annotated[
         str | None,

@@ -15,7 +15,7 @@ from typing import Annotated
 
 import typer
 
-from inherit_sg.cli.output import handle_errors
+from inherit_sg.cli.output import ConfigFileOption, OverridesOption, handle_errors
 from inherit_sg.cli.serve_cmd import exposure_warning
 from inherit_sg.errors import InputError
 
@@ -56,11 +56,8 @@ def mcp(
     port: Annotated[
         int, typer.Option(min=1, max=65535, help="http: TCP port; the endpoint is /mcp.")
     ] = DEFAULT_PORT,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Config override section.field=value (repeatable)."),
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     insecure: Annotated[
         bool,
         typer.Option(

@@ -6,12 +6,20 @@ import json
 import sys
 from collections.abc import Callable, Sequence
 from functools import wraps
-from typing import Any, ParamSpec, TypeVar
+from pathlib import Path
+from typing import Annotated, Any, ParamSpec, TypeVar
 
 import typer
 
 from inherit_sg.errors import InheritSGError
 from inherit_sg.json_values import jsonable
+
+# The configuration options every command that loads a configuration takes.
+ConfigFileOption = Annotated[Path | None, typer.Option("--config", help="TOML config file.")]
+OverridesOption = Annotated[
+    list[str] | None,
+    typer.Option("--set", help="Config override section.field=value (repeatable)."),
+]
 
 P = ParamSpec("P")
 R = TypeVar("R")

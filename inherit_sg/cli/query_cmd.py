@@ -20,7 +20,13 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import handle_errors, print_json, print_table
+from inherit_sg.cli.output import (
+    ConfigFileOption,
+    OverridesOption,
+    handle_errors,
+    print_json,
+    print_table,
+)
 from inherit_sg.errors import InheritSGError, InputError
 
 if TYPE_CHECKING:
@@ -198,10 +204,8 @@ def query(
             "from +x): 'left', 'right' and ordinals are seen from it.",
         ),
     ] = None,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None, typer.Option("--set", help="Config override section.field=value.")
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     rerun: Annotated[
         str | None,
         typer.Option(

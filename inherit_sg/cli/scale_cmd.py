@@ -11,7 +11,14 @@ from typing import Annotated, Any
 
 import typer
 
-from inherit_sg.cli.output import counting_bars, handle_errors, print_json, print_table
+from inherit_sg.cli.output import (
+    ConfigFileOption,
+    OverridesOption,
+    counting_bars,
+    handle_errors,
+    print_json,
+    print_table,
+)
 
 SUMMARY_COLUMNS = ("map", "status", "sessions", "frames", "rooms", "objects", "seconds", "error")
 
@@ -59,11 +66,8 @@ def build_many(
     cpus_per_map: Annotated[
         float, typer.Option(min=0.1, help="CPUs Ray reserves for each map's task.")
     ] = 1.0,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Config override section.field=value (repeatable)."),
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the report as JSON.")] = False,
 ) -> None:
     """Build one map per manifest line under ROOT, one Ray task per map: different maps

@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from inherit_sg.cli.output import handle_errors
+from inherit_sg.cli.output import ConfigFileOption, OverridesOption, handle_errors
 from inherit_sg.config import Config
 from inherit_sg.errors import InputError
 
@@ -59,11 +59,8 @@ def serve(
         int | None,
         typer.Option(min=1, max=65535, help="TCP port (default: service.port, 8765)."),
     ] = None,
-    config_file: Annotated[Path | None, typer.Option("--config", help="TOML config file.")] = None,
-    overrides: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Config override section.field=value (repeatable)."),
-    ] = None,
+    config_file: ConfigFileOption = None,
+    overrides: OverridesOption = None,
     insecure: Annotated[
         bool,
         typer.Option(
