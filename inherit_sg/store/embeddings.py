@@ -21,7 +21,7 @@ import numpy as np
 
 from inherit_sg.errors import InputError, MapCorruptError
 from inherit_sg.store.indexes import VectorIndex
-from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, rows, run
+from inherit_sg.store.kuzu_util import arrow_table, rows, run
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -94,10 +94,7 @@ def read_vectors(
     else:
         query = f"UNWIND $ids AS i MATCH (v:{spec.table} {{id: i}}) RETURN v.id AS id, v.vec AS vec"
         params = {"ids": list(ids)}
-    res = conn.execute(query, params)
-    assert isinstance(res, kuzu.QueryResult)
-    table = res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
-    res.close()
+    table = arrow_table(conn, query, params)
     if table.num_rows == 0:
         return [], np.zeros((0, dim), dtype=np.float32)
     out_ids = [str(x) for x in table.column("id").to_pylist()]
@@ -114,10 +111,7 @@ def read_vectors(
 
 def read_digests(conn: kuzu.Connection, table: str) -> dict[str, str]:
     """id -> digest of every row of an embedding table."""
-    res = conn.execute(f"MATCH (v:{table}) RETURN v.id AS id, v.digest AS digest")
-    assert isinstance(res, kuzu.QueryResult)
-    found = res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
-    res.close()
+    found = arrow_table(conn, f"MATCH (v:{table}) RETURN v.id AS id, v.digest AS digest")
     return dict(
         zip(found.column("id").to_pylist(), found.column("digest").to_pylist(), strict=True)
     )

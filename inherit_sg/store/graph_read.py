@@ -13,7 +13,7 @@ from inherit_sg.model import Edge, EdgeKind, Keyframe, Layer, Node, SceneGraph, 
 from inherit_sg.store import codec, edges
 from inherit_sg.store.embeddings import read_vectors
 from inherit_sg.store.indexes import indexes_of
-from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, scalar
+from inherit_sg.store.kuzu_util import arrow_table, scalar
 from inherit_sg.store.node_write import table_of
 
 
@@ -21,11 +21,7 @@ def arrow_rows(
     conn: kuzu.Connection, query: str, params: dict[str, Any] | None = None
 ) -> list[dict[str, Any]]:
     """Result rows as dicts keyed by the RETURN aliases."""
-    res = conn.execute(query, params or {})
-    assert isinstance(res, kuzu.QueryResult)
-    table = res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
-    res.close()
-    return table.to_pylist()
+    return arrow_table(conn, query, params).to_pylist()
 
 
 def _returns(var: str, cols: Sequence[str]) -> str:

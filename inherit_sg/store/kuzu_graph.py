@@ -17,7 +17,7 @@ import kuzu
 
 from inherit_sg.errors import CypherError, MapError, QueryTimeoutError
 from inherit_sg.store.cypher_lex import split_statements
-from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, next_row, run, translate
+from inherit_sg.store.kuzu_util import arrow_table, next_row, run, translate
 from inherit_sg.store.readonly import check_read_only
 from inherit_sg.store.skip_guard import check_skip
 
@@ -142,10 +142,7 @@ class KuzuGraph:
         check_read_only(query)
         with self.snapshot() as conn:
             try:
-                res = conn.execute(query, params or {})
-                assert isinstance(res, kuzu.QueryResult)
-                table = res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
-                res.close()
+                table = arrow_table(conn, query, params)
             except RuntimeError as exc:
                 raise translate(exc, query) from None
             except (ValueError, TypeError) as exc:  # parameters Kuzu cannot bind

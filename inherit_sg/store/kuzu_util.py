@@ -3,9 +3,12 @@ Kuzu's exceptions into INHerit-SG errors."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import kuzu
+
+if TYPE_CHECKING:
+    import pyarrow as pa
 
 from inherit_sg.errors import CypherError, InheritSGError, ReadOnlyViolationError
 
@@ -22,6 +25,17 @@ def next_row(res: kuzu.QueryResult) -> list[Any]:
     """The next row as a list (Kuzu may hand back a dict)."""
     row = res.get_next()
     return list(row.values()) if isinstance(row, dict) else list(row)
+
+
+def arrow_table(
+    conn: kuzu.Connection, query: str, params: dict[str, Any] | None = None
+) -> pa.Table:
+    """A query's whole result as an Arrow table (columns named by the RETURN aliases)."""
+    res = _result(conn.execute(query, params or {}))
+    try:
+        return res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS)
+    finally:
+        res.close()
 
 
 def run(conn: kuzu.Connection, query: str, params: dict[str, Any] | None = None) -> None:

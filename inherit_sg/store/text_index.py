@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import kuzu
 
-from inherit_sg.store.kuzu_util import ARROW_CHUNK_ROWS, index_names, rows, run, scalar, table_names
+from inherit_sg.store.kuzu_util import arrow_table, index_names, rows, run, scalar, table_names
 
 STATE_TABLE = "_TextIndexState"
 
@@ -103,13 +103,11 @@ def rebuild(graph: kuzu.Connection, index: kuzu.Connection) -> None:
     parts = []
     for spec in TEXT_INDEXES.values():
         label, body = spec.columns
-        res = graph.execute(
+        query = (
             f"MATCH (n:{spec.table}) RETURN n.id AS id, '{spec.table}' AS layer, "
             f"n.{label} AS label, n.{body} AS body"
         )
-        assert isinstance(res, kuzu.QueryResult)
-        parts.append(res.get_as_arrow(chunk_size=ARROW_CHUNK_ROWS))
-        res.close()
+        parts.append(arrow_table(graph, query))
     docs = pa.concat_tables(parts)
     for doc_table, fts_index in (*_LEGACY.values(), (DOC_TABLE, FTS_INDEX)):
         _drop(index, doc_table, fts_index)
