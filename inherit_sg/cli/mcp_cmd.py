@@ -16,7 +16,7 @@ from typing import Annotated
 import typer
 
 from inherit_sg.cli.output import ConfigFileOption, OverridesOption, handle_errors
-from inherit_sg.cli.serve_cmd import exposure_warning
+from inherit_sg.cli.serve_cmd import checked_exposure, url_host
 from inherit_sg.errors import InputError
 
 INSTALL_HINT = "pip install 'inherit-sg[mcp]'"
@@ -85,15 +85,14 @@ def mcp(
         run_stdio(build_server(named, cfg, access))
         return
     bind_host = host if host is not None else cfg.service.host
-    exposed = exposure_warning(bind_host, cfg)
-    if exposed is not None and not insecure:
-        raise InputError(f"refusing to start: {exposed} (or pass --insecure)")
+    exposed = checked_exposure(bind_host, cfg, insecure)
     access = Access(cfg)
-    shown = f"[{bind_host}]" if ":" in bind_host else bind_host
 
     def ready() -> None:
         if exposed is not None:
             typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
-        typer.echo(f"serving {len(named)} map(s) over MCP at http://{shown}:{port}{HTTP_PATH}")
+        typer.echo(
+            f"serving {len(named)} map(s) over MCP at http://{url_host(bind_host)}:{port}{HTTP_PATH}"
+        )
 
     run_http(build_server(named, cfg, access), cfg, access, bind_host, port, ready=ready)

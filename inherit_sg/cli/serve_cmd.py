@@ -46,6 +46,20 @@ def exposure_warning(host: str, config: Config) -> str | None:
     )
 
 
+def checked_exposure(host: str, config: Config, insecure: bool) -> str | None:
+    """:func:`exposure_warning` for binding ``host``; an InputError when it is exposed and
+    ``insecure`` was not given (the warning to show at start-up otherwise)."""
+    exposed = exposure_warning(host, config)
+    if exposed is not None and not insecure:
+        raise InputError(f"refusing to start: {exposed} (or pass --insecure)")
+    return exposed
+
+
+def url_host(host: str) -> str:
+    """``host`` as written in a URL (an IPv6 address in brackets)."""
+    return f"[{host}]" if ":" in host else host
+
+
 @handle_errors
 def serve(
     map_dir: Annotated[
@@ -103,9 +117,7 @@ def serve(
     cfg = load_config(config_file, overrides or [])
     bind_host = host if host is not None else cfg.service.host
     bind_port = port if port is not None else cfg.service.port
-    exposed = exposure_warning(bind_host, cfg)
-    if exposed is not None and not insecure:
-        raise InputError(f"refusing to start: {exposed} (or pass --insecure)")
+    exposed = checked_exposure(bind_host, cfg, insecure)
     if workers is not None:
         cfg = cfg.model_copy(
             update={"service": cfg.service.model_copy(update={"workers": workers})}
@@ -117,9 +129,8 @@ def serve(
     app = create_app(map_dir, cfg)  # checks the maps before any worker starts
     if exposed is not None:
         typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
-    shown = f"[{bind_host}]" if ":" in bind_host else bind_host
     typer.echo(
-        f"serving {map_dir} at http://{shown}:{bind_port}/v1/maps/"
+        f"serving {map_dir} at http://{url_host(bind_host)}:{bind_port}/v1/maps/"
         + (f" ({processes} processes, read-only)" if processes > 1 else "")
     )
     if processes == 1:
@@ -152,11 +163,10 @@ def _serve_on_ray(
 
     if exposed is not None:
         typer.secho(f"warning: {exposed}", fg=typer.colors.YELLOW, err=True)
-    shown = f"[{host}]" if ":" in host else host
 
     def ready() -> None:
         typer.echo(
-            f"serving {len(names)} map(s) from {map_dir} at http://{shown}:{port}/v1/maps/ "
+            f"serving {len(names)} map(s) from {map_dir} at http://{url_host(host)}:{port}/v1/maps/ "
             f"({replicas} Ray Serve replicas, read-only)"
         )
 
