@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 from inherit_sg.errors import NodeNotFoundError
 from inherit_sg.model.ids import Layer, layer_of
 from inherit_sg.reads.models import HierarchyStep, NodeDetail, NodeLink
-from inherit_sg.reads.objects import get_object
+from inherit_sg.reads.objects import get_object, hierarchy_step
 from inherit_sg.reads.pictures import check_key
 from inherit_sg.store.codec import room_types_from_json
 
@@ -119,11 +119,9 @@ def _ancestors(service: MapService, layer: str, row: dict[str, Any]) -> list[Hie
             steps.append(HierarchyStep(layer="room", id=room_id, label=hit[0][0] or ""))
             floor_id = hit[0][1]
     if layer in ("area", "room") and floor_id:
-        hit = service.cypher(
-            "MATCH (f:Floor) WHERE f.id = $id RETURN f.label", {"id": floor_id}
-        ).rows
-        if hit:
-            steps.append(HierarchyStep(layer="floor", id=floor_id, label=hit[0][0] or ""))
+        floor = hierarchy_step(service, "floor", floor_id)
+        if floor is not None:
+            steps.append(floor)
     return steps
 
 

@@ -75,19 +75,15 @@ def get_object(service: MapService, object_id: str) -> ObjectDetail:
             max_rows=None,
         ).rows
     ]
-    hierarchy = []
-    for layer, table, node_id in (
-        ("area", "Area", area_id),
-        ("room", "Room", base["room_id"]),
-        ("floor", "Floor", base["floor_id"]),
-    ):
-        if not node_id:
-            continue
-        hit = service.cypher(
-            f"MATCH (n:{table}) WHERE n.id = $id RETURN n.label", {"id": node_id}
-        ).rows
-        if hit:
-            hierarchy.append(HierarchyStep(layer=layer, id=node_id, label=hit[0][0] or ""))
+    hierarchy = [
+        step
+        for layer, node_id in (
+            ("area", area_id),
+            ("room", base["room_id"]),
+            ("floor", base["floor_id"]),
+        )
+        if node_id and (step := hierarchy_step(service, layer, node_id)) is not None
+    ]
     return ObjectDetail(
         **base,
         bbox_min=bbox_min,
@@ -97,6 +93,18 @@ def get_object(service: MapService, object_id: str) -> ObjectDetail:
         best_keyframe=best_keyframe or None,
         keyframes=_keyframes(service, object_id),
     )
+
+
+_LAYER_TABLES = {"area": "Area", "room": "Room", "floor": "Floor"}
+
+
+def hierarchy_step(service: MapService, layer: str, node_id: str) -> HierarchyStep | None:
+    """The area, room or floor ``node_id`` as a step of a hierarchy path (with its
+    label); None when the map has no such node."""
+    hit = service.cypher(
+        f"MATCH (n:{_LAYER_TABLES[layer]}) WHERE n.id = $id RETURN n.label", {"id": node_id}
+    ).rows
+    return HierarchyStep(layer=layer, id=node_id, label=hit[0][0] or "") if hit else None
 
 
 def _keyframes(service: MapService, object_id: str) -> list[KeyframeRef]:
