@@ -16,6 +16,7 @@ from pydantic import Field
 from inherit_sg.api.state import Registry, ServedMap
 from inherit_sg.config import Config
 from inherit_sg.errors import InheritSGError, InputError, MapError, NotFoundError
+from inherit_sg.facade import MapService
 
 MapArg = Annotated[
     str | None,
@@ -65,6 +66,14 @@ class ServedMaps:
                 "name one with the 'map' argument"
             )
         return registry.get(name)
+
+    @contextmanager
+    def service(self, name: str | None) -> Iterator[MapService]:
+        """The open service of the map called ``name`` (see :meth:`get`), held under the
+        map's lock for the ``with`` block."""
+        served = self.get(name)
+        with served.lock:
+            yield served.require()
 
 
 @contextmanager

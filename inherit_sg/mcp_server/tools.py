@@ -172,10 +172,8 @@ class ReadTools:
         self, map: MapArg = None, label: LabelArg = None, limit: Limit = 100, offset: Offset = 0
     ) -> FloorPage:
         """A page of the map's floors (by id) with their level and room and object counts."""
-        with reported():
-            served = self.maps.get(map)
-            with served.lock:
-                return served.require().floors(label=label, limit=limit, offset=offset)
+        with reported(), self.maps.service(map) as svc:
+            return svc.floors(label=label, limit=limit, offset=offset)
 
     def list_rooms(
         self,
@@ -187,10 +185,8 @@ class ReadTools:
     ) -> RoomPage:
         """A page of rooms (by id), optionally on one floor or with one label, each with
         its summary, position, inferred room types, best view and child counts."""
-        with reported():
-            served = self.maps.get(map)
-            with served.lock:
-                return served.require().rooms(floor=floor, label=label, limit=limit, offset=offset)
+        with reported(), self.maps.service(map) as svc:
+            return svc.rooms(floor=floor, label=label, limit=limit, offset=offset)
 
     def list_objects(
         self,
@@ -203,12 +199,8 @@ class ReadTools:
     ) -> ObjectPage:
         """A page of objects (by id), optionally on one floor, in one room or with one
         label, each with its position, room, floor, description and status."""
-        with reported():
-            served = self.maps.get(map)
-            with served.lock:
-                return served.require().objects(
-                    floor=floor, room=room, label=label, limit=limit, offset=offset
-                )
+        with reported(), self.maps.service(map) as svc:
+            return svc.objects(floor=floor, room=room, label=label, limit=limit, offset=offset)
 
     def describe_node(
         self,
@@ -221,16 +213,12 @@ class ReadTools:
         hierarchy (area → room → floor), its children, its edges (an object's spatial
         relations, a room's doors, a floor's stairs), its best view and the keyframes an
         object was seen in."""
-        with reported():
-            served = self.maps.get(map)
-            with served.lock:
-                return describe_node(served.require(), node_id)
+        with reported(), self.maps.service(map) as svc:
+            return describe_node(svc, node_id)
 
     def schema(self, map: MapArg = None) -> GraphSchema:
         """The public graph tables of the map with their properties and types, what they
         hold, example Cypher statements and the rules statements follow: read this
         before writing Cypher."""
-        with reported():
-            served = self.maps.get(map)
-            with served.lock:
-                return graph_schema(served.require())
+        with reported(), self.maps.service(map) as svc:
+            return graph_schema(svc)
