@@ -105,9 +105,8 @@ def backproject_mask(
     rows, cols = np.nonzero(valid)
     if len(rows) < MIN_POINTS:
         return None
-    rows, cols = rows + y0, cols + x0
-    depth = frame.depth
     z = depth[rows, cols].astype(np.float64)
+    rows, cols = rows + y0, cols + x0
     med = np.median(z)
     mad = np.median(np.abs(z - med)) * 1.4826 + 0.02
     keep = np.abs(z - med) <= mad_k * mad + 0.05 * med

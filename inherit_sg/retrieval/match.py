@@ -270,19 +270,6 @@ def _open_function(
             out[label] = (float(value), why)
 
 
-def _rooms(
-    words: list[str],
-    rtype: str | None,
-    snap: MapSnapshot,
-    sim: PhraseSimilarity,
-    negated: bool = False,
-    beside: str = "",
-    opening: bool = False,
-) -> Matches:
-    """Rooms by label, inferred alternatives, aliases, then embeddings (room_match)."""
-    return match_rooms(words, rtype, snap, sim, negated=negated, beside=beside, opening=opening)
-
-
 def _areas(words: list[str], snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
     wanted = {_clean(w) for w in words if w}
     out: Matches = {}
@@ -304,7 +291,7 @@ def resolve_matches(
         words = [_clean(w) for w in (*con.labels, con.noun) if w]
         if layer == "room":
             rtype = next((room_type(w) for w in words if room_type(w)), None)
-            return _rooms(words, rtype, snap, sim, con.negated)
+            return match_rooms(words, rtype, snap, sim, negated=con.negated)
         if layer == "area":
             return _areas(words, snap, sim)
         return None
@@ -312,7 +299,15 @@ def resolve_matches(
         return _function_labels(con, snap, sim) if layer == "object" else None
     if isinstance(con, RoomConstraint):
         words = [_clean(w) for w in (con.type or "", con.name) if w]
-        return _rooms(words, con.type, snap, sim, con.negated, con.beside, con.opening)
+        return match_rooms(
+            words,
+            con.type,
+            snap,
+            sim,
+            negated=con.negated,
+            beside=con.beside,
+            opening=con.opening,
+        )
     if isinstance(con, AreaConstraint):
         return _areas([con.label], snap, sim)
     return None
