@@ -154,8 +154,8 @@ class Grammar(Cursor):
                 np.ordinal = tok.tags["ord"]
             elif tok.has("super"):
                 np.superlative = tok.tags["super"]
-            elif tok.has("side") and not self.at("of", k=1):
-                np.direction = tok.tags["side"]  # "the leftmost chair"
+            elif tok.has("side") and (not self.at("of", k=1) or self._group_follows(1)):
+                np.direction = tok.tags["side"]  # "the leftmost chair", "… of the chairs"
             elif (
                 tok.has("dir")
                 and tok.tags["dir"] in ("left", "right")
@@ -461,11 +461,13 @@ class Grammar(Cursor):
             self.advance()
             self._placement(np, tok.tags["placement"], tok.text)
             return True
-        if tok.has("side") and not self.at("of", k=1):
+        if tok.has("side") and (not self.at("of", k=1) or self._group_follows(1)):
             self.advance()
             np.direction = tok.tags["side"]  # "the one farthest left"
             return True
         if tok.has("prep") and tok.text == "in" and self._middle_here(np):
+            return True
+        if self._middle_of_group(np, tok):
             return True
         if tok.has("prep", "away"):
             snap = self.state()
@@ -748,12 +750,17 @@ class Grammar(Cursor):
         k = 1
         while self.at("det", "seeker", k=k) and k < 3:
             k += 1  # "the", "your", "my"
+        counted = np.ordinal is not None and not np.labels
+        if counted and self._side_of_group(np, k):
+            return True
         if not self.at("dir", k=k):
             return False
         end = k + 1
         if self.text_at(end) == "side":
             end += 1
-        if self.at("of", k=end) or (self.at("det", k=end) and self.np_start(end)):
+        if (self.at("of", k=end) and not (counted and self._group_follows(end))) or (
+            self.at("det", k=end) and self.np_start(end)
+        ):
             return False  # "to the left of the sofa", "in near the doorway"
         if self.at("noun", "unk", k=end):
             return False  # "beneath the left window": the side is the landmark's
@@ -764,11 +771,58 @@ class Grammar(Cursor):
     def _middle_here(self, np: NP) -> bool:
         """ "in the middle" / "in the centre" of a row (not "of the room")."""
         k = 2 if self.at("det", k=1) else 1
-        if not self.at("middle", k=k) or self.at("of", k=k + 1):
+        if not self.at("middle", k=k):
             return False
+        if self.at("of", k=k + 1) and (np.labels or not self._group_follows(k + 1)):
+            return False  # "in the middle of the room" (but "of the three sinks" is a row)
         self.i += k + 1
         if np.superlative is None:
             np.superlative = "middle"
+        return True
+
+    def _group_follows(self, k: int) -> bool:
+        """ "of the three chairs" ``k`` tokens ahead: things of one kind that a side or a
+        count picks from ("the leftmost of the chairs", "the second from the right of
+        the four chairs"), not a place ("the far left of the room", "left of the sofa")."""
+        return self.at("of", k=k) and self._group_at(k + 1) is not None
+
+    def _group_at(self, k: int) -> NP | None:
+        """The plural object phrase that starts ``k`` tokens ahead, read without moving."""
+        if not self.np_start(k):
+            return None
+        snap = self.state()
+        self.i += k
+        sub = self.parse_np(landmark=True)
+        self.restore(snap)
+        return sub if sub is not None and sub.kind == OBJECT and sub.plural else None
+
+    def _middle_of_group(self, np: NP, tok: Tok) -> bool:
+        """ "the one in the middle of the three sinks": the middle one of a group (a
+        named thing "in the middle of" others stands between them)."""
+        if tok.tags.get("prep") != "between" or tok.text == "between":
+            return False
+        if np.kind != ONE or np.labels or self._group_at(1) is None:
+            return False
+        self.advance()
+        sub = self.parse_np(landmark=True)
+        assert sub is not None
+        np.superlative = "middle"
+        self._partitive(np, sub)
+        return True
+
+    def _side_of_group(self, np: NP, k: int) -> bool:
+        """ "the second from the right of the four chairs": the side is counted from, and
+        the group after it (one "right of" token) is what the count picks from."""
+        side = self.peek(k)
+        if side is None or side.tags.get("prep") not in ("left_of", "right_of"):
+            return False
+        if self._group_at(k + 1) is None:
+            return False
+        self.i += k + 1
+        sub = self.parse_np(landmark=True)
+        assert sub is not None
+        np.direction = str(side.tags["prep"]).removesuffix("_of")
+        self._partitive(np, sub)
         return True
 
     def _placement(self, np: NP, where: str, text: str) -> None:
