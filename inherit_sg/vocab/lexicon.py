@@ -45,6 +45,19 @@ def _str_map(table: dict[str, Any], where: str) -> dict[str, str]:
     return out
 
 
+def _place_map(table: dict[str, Any], where: str) -> dict[str, tuple[str, str]]:
+    """``modifier = "predicate landmark"`` entries as (predicate, landmark) pairs."""
+    out: dict[str, tuple[str, str]] = {}
+    for key, value in _str_map(table, where).items():
+        predicate, _, landmark = value.partition(" ")
+        if not landmark.strip():
+            raise VocabularyError(
+                f"lexicon.toml [{where}]: {key!r} must map to 'predicate landmark', got {value!r}"
+            )
+        out[key] = (predicate, landmark.strip())
+    return out
+
+
 def _int_map(table: dict[str, Any], where: str) -> dict[str, int]:
     out: dict[str, int] = {}
     for k, v in table.items():
@@ -97,6 +110,7 @@ class Lexicon:
     quantity_nouns: frozenset[str]
     abstract_nouns: frozenset[str]
     position_nouns: dict[str, str]
+    place_modifiers: dict[str, tuple[str, str]]
     corrections: frozenset[str]
     viewpoint_verbs: frozenset[str]
     facing_verbs: frozenset[str]
@@ -199,6 +213,7 @@ def lexicon() -> Lexicon:
         quantity_nouns=frozenset(_list(words, "quantity_nouns", where)),
         abstract_nouns=frozenset(_list(words, "abstract_nouns", where)),
         position_nouns=_str_map(_section(words, "position_nouns"), "words.position_nouns"),
+        place_modifiers=_place_map(_section(words, "place_modifiers"), "words.place_modifiers"),
         corrections=frozenset(_list(_section(words, "more"), "corrections", where)),
         viewpoint_verbs=frozenset(_list(_section(words, "more"), "viewpoint_verbs", where)),
         facing_verbs=frozenset(_list(_section(words, "more"), "facing_verbs", where)),

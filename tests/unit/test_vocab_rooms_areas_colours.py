@@ -259,3 +259,27 @@ def test_the_digest_follows_the_files(data_dir: Path) -> None:
     _clear()
     after = vocab.vocabulary_info()
     assert after["digest"] != before["digest"] and rooms.room_type("root cellar") == "closet"
+
+
+# ------------------------------------------------------------------ lexicon
+def test_place_modifier_without_a_landmark_is_refused(data_dir: Path) -> None:
+    from inherit_sg.vocab.lexicon import lexicon
+
+    lexicon.cache_clear()
+    _edit(data_dir / "lexicon.toml", '"bedside" = "next_to bed"', '"bedside" = "next_to"')
+    try:
+        with pytest.raises(
+            VocabularyError, match=r"place_modifiers.*'bedside'.*predicate landmark"
+        ):
+            lexicon()
+    finally:
+        lexicon.cache_clear()
+
+
+def test_every_place_modifier_names_a_predicate_and_a_known_thing() -> None:
+    from inherit_sg.retrieval.constraints import PREDICATES
+    from inherit_sg.vocab.lexicon import lexicon
+
+    for word, (predicate, place) in lexicon().place_modifiers.items():
+        assert predicate in PREDICATES, word
+        assert objects.labels_for(place), word

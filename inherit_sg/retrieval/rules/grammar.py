@@ -22,10 +22,12 @@ from inherit_sg.retrieval.constraints import (
     AttributeConstraint,
     Constraint,
     FloorConstraint,
+    Landmark,
     PlacementConstraint,
     RelationConstraint,
     RoomConstraint,
     Superlative,
+    Target,
 )
 from inherit_sg.retrieval.rules import verbs
 from inherit_sg.retrieval.rules.cursor import Cursor, weighted
@@ -307,6 +309,7 @@ class Grammar(Cursor):
             self.notes.append(f"compound noun {np.noun!r} → label {'/'.join(np.labels)}")
         if np.kind == OBJECT:
             self._room_modifier(np, run)
+            self._place_modifier(np, run)
 
     def _room_modifier(self, np: NP, run: list[Tok]) -> None:
         """A room word before the head noun says where the thing is: "the bedroom TV",
@@ -326,6 +329,31 @@ class Grammar(Cursor):
                 text=f"{name} {run[-1].text}" if rooms else run[-1].text,
             )
         )  # fmt: skip
+
+    def _place_modifier(self, np: NP, run: list[Tok]) -> None:
+        """A modifier that says where the thing is ("the bedside lamp", "the couch
+        cushions", lexicon ``place_modifiers``) adds a hedged relation to that place,
+        also inside a compound the object vocabulary knows as one label."""
+        words = [w for tok in run for w in tok.text.split()]
+        places = lexicon().place_modifiers
+        said = next((w for w in words[:-1] if w in places), None)
+        if said is None:
+            return
+        if any(said in label.split() for label in np.labels):
+            return  # part of the kind's own name: "the sofa bed", "the tv stand"
+        predicate, place = places[said]
+        labels = object_vocab.labels_for(place)
+        if not labels or set(labels) & set(np.labels):
+            return
+        np.constraints.append(
+            RelationConstraint(
+                predicate=predicate,
+                landmark=Landmark(target=Target(layer="object", labels=labels, noun=place)),
+                weight=weighted("relation", "hedge"),
+                text=f"{said} {words[-1]}",
+            )
+        )
+        self.notes.append(f"'{said}' places the {words[-1]} {predicate.replace('_', ' ')} {place}")
 
     @staticmethod
     def _name_area(np: NP) -> None:
