@@ -619,6 +619,11 @@ class Grammar(Cursor):
                 np.places.append(self._room(sub, False, f"of {sub.noun}", None))
             elif sub is not None and sub.kind == OBJECT and self._picks_from(np):
                 self._partitive(np, sub)  # "the larger of the two toolboxes"
+            elif sub is not None and sub.kind == ONE and sub.quantity and not sub.labels:
+                # "the smaller bin of the two by the desk": the group is the named kind,
+                # and what is said of the group holds for the target
+                np.constraints += sub.constraints
+                np.places += sub.places
             elif sub is not None and sub.words:
                 np.words += ["of", *sub.words]  # "a cup of tea", "the bag of chips"
             return True  # "the middle monitor of the three": the group, counted
