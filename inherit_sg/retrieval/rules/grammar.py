@@ -162,8 +162,9 @@ class Grammar(Cursor):
                 tok.has("dir")
                 and tok.tags["dir"] in ("left", "right")
                 and (self._head_follows(1) or (count and self._phrase_ends(1)))
-            ):
-                # "the left chair", "the right one"; "…, not the right" (the one on it)
+            ) or (tok.has("dir") and tok.tags["dir"] in ("front", "back") and self.at("one", k=1)):
+                # "the left chair", "the right one"; "…, not the right" (the one on it);
+                # "the far one", "the near one" (a "far chair" may be a kind's name)
                 np.direction = tok.tags["dir"]
             elif tok.has("middle") and self._head_follows(1) and not self.at("floor_noun", k=1):
                 np.superlative = "middle"  # "the middle chair", "the centre one"
