@@ -56,6 +56,12 @@ def _clear_damage(method: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+def _id_column(tbl: Any, *, with_row_id: bool = False) -> pa.Table:
+    """Every row's ``id`` (and Lance ``_rowid`` when asked) of the table ``tbl``."""
+    query = tbl.search().select(["id"]).with_row_id(with_row_id)
+    return query.limit(max(1, int(tbl.count_rows()))).to_arrow()
+
+
 def _quote(ids: Sequence[str]) -> str:
     return ", ".join("'" + i.replace("'", "''") + "'" for i in ids)
 
@@ -147,8 +153,8 @@ class KeyframeBlobs:
         latest = list({k.id: k for k in keyframes}.values())
         tbl = self._tbl()
         rows = self._rows(latest)
-        # a keyframe imported without its feature keeps a null one (not a "bad vector")
         self._row_ids = None
+        # a keyframe imported without its feature keeps a null one (not a "bad vector")
         tbl.merge_insert("id").when_matched_update_all().when_not_matched_insert_all().execute(
             rows, on_bad_vectors="null"
         )
@@ -177,18 +183,13 @@ class KeyframeBlobs:
         tbl = self._tbl()
         if tbl is None:
             return set()
-        n = int(tbl.count_rows())
-        if n == 0:
-            return set()
-        found = tbl.search().select(["id"]).limit(n).to_arrow()
-        return {str(i) for i in found.column("id").to_pylist()}
+        return {str(i) for i in _id_column(tbl).column("id").to_pylist()}
 
     def _by_row_id(self, tbl: Any, keyframe_id: str) -> dict[str, Any] | None:
         """The row of ``keyframe_id`` looked up by its Lance row id; None when the id
         is not known or the row there is another one (the table changed since)."""
         if self._row_ids is None:
-            found = tbl.search().select(["id"]).with_row_id(True)
-            found = found.limit(max(1, int(tbl.count_rows()))).to_arrow()
+            found = _id_column(tbl, with_row_id=True)
             ids, rids = found.column("id").to_pylist(), found.column("_rowid").to_pylist()
             self._row_ids = {str(i): int(r) for i, r in zip(ids, rids, strict=True)}
         rid = self._row_ids.get(keyframe_id)

@@ -822,24 +822,31 @@ class Grammar(Cursor):
 
     def _group_at(self, k: int) -> NP | None:
         """The plural object phrase that starts ``k`` tokens ahead, read without moving."""
+        snap = self.state()
+        sub = self._take_group(k)
+        self.restore(snap)
+        return sub
+
+    def _take_group(self, k: int) -> NP | None:
+        """Read the plural object phrase that starts ``k`` tokens ahead and move past it;
+        None (and no move) when none starts there."""
         if not self.np_start(k):
             return None
         snap = self.state()
         self.i += k
         sub = self.parse_np(landmark=True)
-        self.restore(snap)
-        return sub if sub is not None and sub.kind == OBJECT and sub.plural else None
+        if sub is None or sub.kind != OBJECT or not sub.plural:
+            self.restore(snap)
+            return None
+        return sub
 
     def _middle_of_group(self, np: NP, tok: Tok) -> bool:
         """ "the one in the middle of the three sinks": the middle one of a group (a
         named thing "in the middle of" others stands between them)."""
         if tok.tags.get("prep") != "between" or tok.text == "between":
             return False
-        if np.kind != ONE or np.labels or self._group_at(1) is None:
+        if np.kind != ONE or np.labels or (sub := self._take_group(1)) is None:
             return False
-        self.advance()
-        sub = self.parse_np(landmark=True)
-        assert sub is not None
         np.superlative = "middle"
         self._partitive(np, sub)
         return True
@@ -850,11 +857,8 @@ class Grammar(Cursor):
         side = self.peek(k)
         if side is None or side.tags.get("prep") not in ("left_of", "right_of"):
             return False
-        if self._group_at(k + 1) is None:
+        if (sub := self._take_group(k + 1)) is None:
             return False
-        self.i += k + 1
-        sub = self.parse_np(landmark=True)
-        assert sub is not None
         np.direction = str(side.tags["prep"]).removesuffix("_of")
         self._partitive(np, sub)
         return True
