@@ -520,7 +520,7 @@ class Grammar(Cursor):
             return True
         if tok.has("super"):
             self.advance()
-            np.constraints.append(self._superlative(tok.tags["super"], tok.text))
+            self._superlative(np, tok.tags["super"], tok.text)
             return True
         if (
             np.superlative in ("closest", "farthest")
@@ -533,7 +533,7 @@ class Grammar(Cursor):
                 return True
             self.advance()
             measure, np.superlative = np.superlative, None
-            np.constraints.append(self._superlative(measure, measure, landmark_now=True))
+            self._superlative(np, measure, measure, landmark_now=True)
             return True
         before = self.peek(-1)
         seen_from = before is not None and before.pos == "VERB"  # "the lamp seen from …"
@@ -627,6 +627,12 @@ class Grammar(Cursor):
                 np.places += sub.places
             elif sub is not None and sub.words:
                 np.words += ["of", *sub.words]  # "a cup of tea", "the bag of chips"
+                # where the contents are is where the container is ("the bottle of water
+                # on the desk"); what they look like stays with them ("of red wine")
+                np.constraints += [
+                    c for c in sub.constraints if not isinstance(c, AttributeConstraint)
+                ]
+                np.places += sub.places
             return True  # "the middle monitor of the three": the group, counted
         return False
 
@@ -875,10 +881,21 @@ class Grammar(Cursor):
             snap = self.state()
             self.advance()
             room = self.parse_np(landmark=True)
-            if room is not None and room.kind == ROOM and (room.room_type or room.labels):
+            if room is None or room.kind != ROOM:
+                self.restore(snap)
+                return
+            if room.room_type or room.labels:
                 np.places.append(self._room(room, False, f"of {room.noun}", None))
-            elif room is None or room.kind != ROOM:
-                self.restore(snap)  # "of the room" says nothing more: consumed
+            elif room.beside:
+                # "of the room" says nothing more, and what follows it ("in the corner of
+                # the room next to the sofa") places the target, not the room: read up to
+                # the room word and leave the rest
+                self.restore(snap)
+                self.advance()
+                while (tok := self.peek()) is not None and tok.text != room.noun:
+                    self.advance()
+                if tok is not None:
+                    self.advance()
 
     # ---------------------------------------------------------- prepositions
     def _side_of(self, lm: NP) -> NP:
@@ -1073,16 +1090,21 @@ class Grammar(Cursor):
             text=f"{word} {' '.join([*values, lm.noun])}",
         )  # fmt: skip
 
-    def _superlative(self, measure: str, text: str, landmark_now: bool = False) -> Superlative:
+    def _superlative(self, np: NP, measure: str, text: str, landmark_now: bool = False) -> None:
+        """A superlative ("the tallest", "closest to the door") → a constraint on ``np``;
+        "closest to the centre of the room" says where in the room: a placement."""
         weight = self.weight("superlative")
         lm = None
         if measure in ("closest", "farthest") and not landmark_now:
             side = self._towards_side()
             if side is not None:  # "the one farthest to the right"
-                return Superlative(
-                    measure="ordinal", ordinal=1, direction=side, weight=weight,
-                    text=f"{text} to the {side}",
+                np.constraints.append(
+                    Superlative(
+                        measure="ordinal", ordinal=1, direction=side, weight=weight,
+                        text=f"{text} to the {side}",
+                    )
                 )  # fmt: skip
+                return
         if measure in ("closest", "farthest"):
             if not landmark_now and self.text_at() in ("away from", "far from"):
                 self.advance()  # "the cabinet farthest away from the sink"
@@ -1090,14 +1112,51 @@ class Grammar(Cursor):
             elif not landmark_now and self.at("to", "from"):
                 self.advance()
                 landmark_now = True
+            if self._centre_of(np, measure, text):
+                return
             if landmark_now or self.at("det"):
                 lm = self.parse_np(landmark=True)
-        return Superlative(
-            measure=measure,
-            landmark=lm.landmark() if lm is not None else None,
-            weight=weight,
-            text=f"{text} {lm.noun}" if lm is not None else text,
+        np.constraints.append(
+            Superlative(
+                measure=measure,
+                landmark=lm.landmark() if lm is not None else None,
+                weight=weight,
+                text=f"{text} {lm.noun}" if lm is not None else text,
+            )
         )
+
+    def _centre_of(self, np: NP, measure: str, text: str) -> bool:
+        """ "closest to the centre of the room": where in the room, a placement (with the
+        room, when it is named; "farthest from …" rules the centre out); "closest to the
+        middle of the table": the table is the landmark."""
+        k = 1 if self.at("det") else 0
+        centre = self.peek(k)
+        if centre is None or centre.text not in _CENTRE_WORDS or not self.at("of", k=k + 1):
+            return False
+        snap = self.state()
+        self.i += k + 2
+        sub = self.parse_np(landmark=True) if self.np_start() else None
+        if sub is not None and sub.kind == OBJECT and sub.labels:
+            np.constraints.append(
+                Superlative(
+                    measure=measure, landmark=sub.landmark(), weight=self.weight("superlative"),
+                    text=f"{text} {centre.text} of {sub.noun}",
+                )
+            )  # fmt: skip
+            return True
+        if sub is None or sub.kind != ROOM:
+            self.restore(snap)
+            return False
+        np.constraints.append(
+            PlacementConstraint(
+                where="centre", negated=measure == "farthest", weight=self.weight("placement"),
+                text=f"{text} {'from' if measure == 'farthest' else 'to'} the {centre.text} "
+                f"of the {sub.noun}",
+            )
+        )  # fmt: skip
+        if sub.room_type or sub.labels:
+            np.places.append(self._room(sub, False, f"of {sub.noun}", None))
+        return True
 
     def _towards_side(self) -> str | None:
         """ "to the right", "to your left", "left" after "farthest": the side, consumed."""
@@ -1125,6 +1184,9 @@ class Grammar(Cursor):
         if isinstance(value, int):
             return FloorConstraint(level=value, negated=neg, text=f"floor {value}")
         return FloorConstraint(relative=value, negated=neg, text=value)
+
+
+_CENTRE_WORDS = frozenset({"center", "centre", "middle"})
 
 
 def _open_label(run: list[Tok]) -> str:

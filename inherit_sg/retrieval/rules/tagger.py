@@ -156,6 +156,8 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
             continue  # "go to charge my phone": "to" opens a purpose, it is no "go to"
         key = tuple(w.text for w in span)
         hit = table.get(key)
+        if hit is not None and n > 1 and _posture_of_thing(hit, span, words, i):
+            continue  # "the lamp standing next to the sofa": "standing" + "next to"
         plural = False
         last = span[-1]
         if hit is None and (last.plural or last.tag == "VBZ"):
@@ -171,6 +173,20 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         if hit is not None:
             return n, hit, plural or (last.plural and "noun" in hit)
     return 0, {}, False
+
+
+# Words before a posture participle that make the participle the thing's, not the
+# speaker's: "the lamp standing in the corner", "the chair that is sitting by the door".
+_THING_POSTURE = frozenset({"is", "'s", "was", "that", "which", "who", "it", "one"})
+
+
+def _posture_of_thing(hit: dict[str, Any], span: list[Word], words: list[Word], i: int) -> bool:
+    """Whether a viewpoint phrase opened by a participle ("standing next to", "sitting
+    in") follows a noun or says where a thing stands, so it is no viewpoint."""
+    if set(hit) != {"view"} or span[0].tag != "VBG" or i == 0:
+        return False
+    prev = words[i - 1]
+    return prev.pos in ("NOUN", "PROPN") or prev.text in _THING_POSTURE
 
 
 def _singulars(word: Word) -> list[str]:
