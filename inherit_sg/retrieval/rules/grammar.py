@@ -1019,12 +1019,7 @@ class Grammar(Cursor):
         if self.at("neg"):
             self.advance()
             neg = not neg
-        weight = self.weight("relation")
-        self.with_depth += 1
-        try:
-            lm = self.parse_np(landmark=True)
-        finally:
-            self.with_depth -= 1
+        lm = self._with_object()
         if lm is None:
             return True
         if np.kind in (ROOM, AREA, GENERIC_AREA) and self._is_part(np, lm):
@@ -1034,29 +1029,60 @@ class Grammar(Cursor):
             np.beside = lm.noun or lm.labels[0]  # "the bathroom with the shower": which one
             np.places += lm.places
             return True
+        held = [lm]
+        if np.kind == OBJECT or np.kind == ONE:
+            held += self._more_with_objects()  # "with two pillows and a blanket (on it)"
         predicate = "contains" if np.kind in (ROOM, AREA, GENERIC_AREA) else "with"
         after = self.peek()
         on_it = after is not None and after.has("prep") and self.at("anaphor", k=1)
-        if predicate == "with" and self._is_part(np, lm) and not (on_it and lm.known):
-            if on_it:
-                self.i += 2  # "a cup with no lid on it": the lid is the cup's
-            np.constraints.append(self._part(np, lm, neg, tok.text))
-            return True
         if on_it:
             assert after is not None
-            predicate = lexicon().with_inverse.get(after.tags["prep"], after.tags["prep"])
             self.i += 2
-        np.constraints.append(
-            RelationConstraint(
-                predicate=predicate,
-                landmark=lm.landmark(),
-                negated=neg,
-                weight=weight,
-                text=f"{tok.text} {lm.noun or lm.kind}",
+        for thing in held:
+            np.constraints.append(
+                self._with_constraint(np, thing, neg, tok.text, predicate, after if on_it else None)
             )
-        )
-        np.places += lm.places
+            np.places += thing.places
         return True
+
+    def _with_object(self) -> NP | None:
+        """The thing a "with" / "has" phrase names ("with a lid", "has two monitors")."""
+        self.with_depth += 1
+        try:
+            return self.parse_np(landmark=True)
+        finally:
+            self.with_depth -= 1
+
+    def _more_with_objects(self) -> list[NP]:
+        """Further things after "and" in a "with" / "has" phrase: "the sofa with two
+        pillows and a blanket", "the desk has a lamp and a computer on it"."""
+        more: list[NP] = []
+        while self.at("and") and self.np_start(1) and not self.at("anaphor", k=1):
+            snap = self.state()
+            self.advance()
+            thing = self._with_object()
+            if thing is None or thing.kind != OBJECT or not thing.labels:
+                self.restore(snap)
+                break
+            more.append(thing)
+        return more
+
+    def _with_constraint(
+        self, np: NP, lm: NP, neg: bool, word: str, predicate: str, on_it: Tok | None
+    ) -> Constraint:
+        """One thing ``np`` has: a part ("with a yellow lid") or a thing with it ("with a
+        lamp on it": the lamp is on the target)."""
+        if predicate == "with" and self._is_part(np, lm) and not (on_it and lm.known):
+            return self._part(np, lm, neg, word)  # "a cup with no lid on it": the cup's lid
+        if on_it is not None:
+            predicate = lexicon().with_inverse.get(on_it.tags["prep"], on_it.tags["prep"])
+        return RelationConstraint(
+            predicate=predicate,
+            landmark=lm.landmark(),
+            negated=neg,
+            weight=self.weight("relation"),
+            text=f"{word} {lm.noun or lm.kind}",
+        )
 
     @staticmethod
     def _is_part(np: NP, lm: NP) -> bool:

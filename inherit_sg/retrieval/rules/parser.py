@@ -23,6 +23,7 @@ from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
 from inherit_sg.vocab.lexicon import lexicon
+from inherit_sg.vocab.objects import is_kind_of
 
 _VAGUE_HEADS = (GENERIC, GENERIC_AREA, VAGUE)
 # Sentences parsed per request (longer texts are talk around the request).
@@ -77,7 +78,17 @@ def _same_thing(head: NP, other: NP) -> bool:
     chair" after "a chair")."""
     if other.kind in (ANAPHOR, ONE):
         return True
-    return other.kind == OBJECT and bool(set(other.labels) & set(head.labels))
+    if other.kind != OBJECT:
+        return False
+    if set(other.labels) & set(head.labels):
+        return True
+    # "a kitchen cabinet. It is the cabinet above …", "a rolling chair … the chair …":
+    # the same thing named more or less exactly
+    return any(
+        is_kind_of(mine, theirs) or is_kind_of(theirs, mine)
+        for mine in head.labels
+        for theirs in other.labels
+    )
 
 
 def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
