@@ -78,6 +78,7 @@ class Lexicon:
     away_prepositions: frozenset[str]
     outside_prepositions: frozenset[str]
     with_inverse: dict[str, str]
+    relation_verbs: dict[str, str]
     superlatives: dict[str, str]
     ordinals: dict[str, int]
     numbers: dict[str, int]
@@ -181,6 +182,7 @@ def lexicon() -> Lexicon:
         away_prepositions=frozenset(_list(_section(rel, "negating"), "away", where)),
         outside_prepositions=frozenset(_list(_section(rel, "negating"), "outside", where)),
         with_inverse=_str_map(_section(rel, "with_inverse"), "relations.with_inverse"),
+        relation_verbs=_str_map(_section(rel, "verbs"), "relations.verbs"),
         superlatives=_str_map(_section(rank, "superlatives"), "ranking.superlatives"),
         ordinals=_int_map(_section(rank, "ordinals"), "ranking.ordinals"),
         numbers=_int_map(_section(rank, "numbers"), "ranking.numbers"),

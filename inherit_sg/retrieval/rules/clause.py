@@ -650,7 +650,7 @@ class ClauseParser(Grammar):
         j = start - 1
         while j >= 0 and (self.toks[j].tag == "RP" or self.toks[j].text in _PARTICLES):
             j -= 1  # "grab out the …"
-        if self._next_errand(out, np, neg, j):
+        if self._verb_of_head(out, np, neg, j) or self._next_errand(out, np, neg, j):
             return
         self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
 
@@ -719,6 +719,28 @@ class ClauseParser(Grammar):
             out.head = np
             return True
         self._sought_near_head(out, np, "is the target")
+        return True
+
+    def _verb_of_head(self, out: Clause, np: NP, neg: bool, j: int) -> bool:
+        """ "The blinds are white and cover the window": in a description (no command
+        before), the object of a placing verb (lexicon ``[relations.verbs]``) after "and"
+        is a landmark of the target, not a second errand."""
+        head = out.head
+        verb = self.toks[j] if j >= 1 else None
+        if head is None or head.kind != OBJECT or np.kind != OBJECT or not np.labels:
+            return False
+        if verb is None or verb.pos != "VERB" or not self.toks[j - 1].has("and"):
+            return False
+        predicate = lexicon().relation_verbs.get(verb.lemma)
+        if predicate is None or any(t.has("seek") for t in self.toks[:j]):
+            return False
+        head.constraints.append(
+            RelationConstraint(
+                predicate=predicate, landmark=np.landmark(), negated=neg,
+                weight=self.weight("relation"), text=f"{verb.text} {np.noun}",
+            )
+        )  # fmt: skip
+        head.constraints += [c for c in np.constraints if isinstance(c, RelationConstraint)]
         return True
 
     def _sought_near_head(self, out: Clause, np: NP, how: str) -> None:

@@ -427,6 +427,8 @@ class Grammar(Cursor):
                 pass  # "a chair that is red and made of wood"
             elif tok.has("and") and after_be and self.at("have", k=1) and self.np_start(2):
                 pass  # "the chair is grey and has four legs": its parts, not a new errand
+            elif tok.has("and", "rel") and (after_be or tok.has("rel")) and self._relation_verb(1):
+                after_be = True  # "the blinds are white and cover the window"
             elif tok.has("comma", "and", "or", "but", "than", "sub"):
                 break
             elif tok.has("be") and tok.has("fverb") and self.at("modal", k=-1):
@@ -461,6 +463,15 @@ class Grammar(Cursor):
             else:
                 continue
             self.advance()
+
+    def _relation_verb(self, k: int) -> bool:
+        """Whether token ``k`` ahead is a verb whose object places the thing that does
+        it ("covers the window", "holding the books"; lexicon ``[relations.verbs]``)."""
+        tok = self.peek(k)
+        if tok is None or tok.pos != "VERB" or tok.lemma not in lexicon().relation_verbs:
+            return False
+        finite = tok.tag in ("VBZ", "VBP", "VBG") or (tok.tag == "VB" and k > 0)
+        return finite and not tok.has("prep", "be") and self.np_start(k + 1)
 
     @staticmethod
     def _beside(np: NP, made: list[Constraint]) -> bool:
@@ -517,6 +528,16 @@ class Grammar(Cursor):
         if tok.has("floor") and not landmark:
             self.advance()
             np.places.append(self._floor(tok.tags["floor"], self.take_neg()))
+            return True
+        if self._relation_verb(0):
+            snap = self.state()
+            made = self.parse_pp(predicate=lexicon().relation_verbs[tok.lemma])
+            if made is None:
+                self.restore(snap)
+                return False
+            places = [c for c in made if c.kind in ("room", "area", "floor")]
+            np.places += places
+            np.constraints += [c for c in made if c not in places]
             return True
         if tok.has("super"):
             self.advance()

@@ -99,6 +99,13 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     states = _terms(words, heads_only=True)
     subjects = _terms(words, heads_only=False)
     thing = _object_subject(words)
+    # a thing that does something ("the cable runs along the wall") states no problem
+    # of the speaker's: with a noun subject, a problem with no subjects of its own needs
+    # its state in a word other than the verb ("the room is too dark")
+    noun_subject = any(w.dep == "nsubj" and w.pos in ("NOUN", "PROPN") for w in words)
+    loose_states = (
+        _terms([w for w in words if w.pos != "VERB"], heads_only=True) if noun_subject else states
+    )
     loose: tuple[str, tuple[str, ...]] | None = None
     for problem in problems():
         if not states.intersection(problem.states):
@@ -107,7 +114,7 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
             continue
         if problem.subjects and subjects.intersection(problem.subjects):
             return problem.function, problem.kinds
-        if not problem.subjects and loose is None:
+        if not problem.subjects and loose is None and loose_states.intersection(problem.states):
             loose = (problem.function, problem.kinds)
     return loose
 

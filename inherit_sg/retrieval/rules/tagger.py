@@ -330,6 +330,16 @@ def _verb_before_place(words: list[Word], i: int) -> bool:
     return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
 
 
+def _verb_of_subject(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` is, by spaCy, the finite verb of the noun just before it ("the
+    plant blocks the view", "the lamp lights up the desk", "the cable runs along the
+    wall"), though the vocabulary knows it as a thing or a function verb."""
+    if i == 0 or words[i].pos != "VERB" or words[i].tag not in ("VBZ", "VBP"):
+        return False
+    subject = words[i - 1]
+    return words[i].dep in ("ROOT", "conj", "relcl") and subject.dep == "nsubj"
+
+
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -373,6 +383,11 @@ def tag(words: list[Word]) -> list[Tok]:
                     for key in ("noun", "unk", "attr"):  # "go stand next to the shelf"
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
+                if _verb_of_subject(words, i) and tok.has("noun", "unk", "fverb"):
+                    for key in ("noun", "unk", "attr", "fverb"):  # "the plant blocks the view"
+                        tok.tags.pop(key, None)
+                    tok.tags.setdefault("overb", words[i].lemma)
+                    tok.pos, tok.tag = "VERB", words[i].tag
                 if first and _verb_with_particle(words, i):
                     # "Switch on the lamp", "Light up the hall": a command, not a noun
                     for key in ("noun", "unk", "attr"):
