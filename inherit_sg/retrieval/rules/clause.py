@@ -53,6 +53,8 @@ _FRAME_SUBJECTS = frozenset({"this", "that", "it", "these", "those", "they", "th
 # Particles and prepositions after a request verb that lead to its object ("walk over to").
 # Particles between a viewpoint verb and its landmark ("come down the stairs").
 # Framing words that point at the thing wanted ("take me to the lamp").
+# Verbs whose object is what the request seeks: "can you get the salt", "fetch my keys".
+_FETCH_VERBS = frozenset({"get", "fetch", "bring", "grab", "find", "locate", "retrieve"})
 _DIRECTIVES = frozenset({
     "take me to", "take me back to", "show me", "guide me to", "lead me to", "walk me to",
     "point me to", "point me toward", "point me towards", "navigate to", "bring me",
@@ -363,6 +365,8 @@ class ClauseParser(Grammar):
         k, opener = 0, False
         if self.text_at() in _VIEW_OPENERS:
             k, opener = 1, True
+        elif self._asked_of_listener():
+            return False  # "can you look at the smoke alarm …": a request, no standpoint
         while self.at("seeker", "be", "modal", "adv", k=k) and k < 5 and not self._view_verb(k):
             k += 1
         lead = self.peek(k)
@@ -416,6 +420,7 @@ class ClauseParser(Grammar):
         if lm is None and opener and not cue.has("view"):
             self._skip_clause()  # "if you stand where the rug ends, …": context only
             return True
+        looked_at = lm
         if kind == "facing" and self.at("from") and self.np_start(1):
             here = self.state()
             self.advance()
@@ -430,6 +435,10 @@ class ClauseParser(Grammar):
             self.restore(snap)  # "look at the clock on the wall": the clock is sought
             return False
         landmark = self._viewpoint_landmark(lm)
+        group = looked_at
+        if group is not None and group.kind == OBJECT and group.plural and group.labels:
+            # "looking at the sinks from the door, the one furthest away": the sinks
+            self.group = self.group or replace(group, constraints=[], places=[])
         out.viewpoint = Viewpoint(
             kind=kind, landmark=landmark, text=" ".join(t.text for t in self.toks[snap[0] : self.i])
         )
@@ -481,6 +490,17 @@ class ClauseParser(Grammar):
         if self.at("comma"):
             self.advance()
         return True
+
+    def _asked_of_listener(self) -> bool:
+        """Whether the words just before are a request to the listener ("can you",
+        "could you please"), so what follows is the errand."""
+        prev = self.peek(-1) if self.i > 0 else None
+        return (
+            prev is not None
+            and prev.has("filler")
+            and not prev.has("view")
+            and "you" in prev.text.split()
+        )
 
     def _entering(self, cue: Tok, start: int) -> bool:
         """Whether a viewpoint clause with no landmark says the speaker comes in ("as you
@@ -779,6 +799,8 @@ class ClauseParser(Grammar):
             return False
         assert isinstance(prev, Tok)
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
+        if after_verb and prev.lemma in _FETCH_VERBS and self._asked_before(prev):
+            after_verb = False  # "can you get the salt": what is fetched is sought
         # "i don't know the name, the thing above the tv": the object of a verb of
         # knowing or saying in a filler phrase (not of "where can i find")
         mental = prev.has("filler") and prev.text.split()[-1] in lexicon().mental_verbs
@@ -788,6 +810,15 @@ class ClauseParser(Grammar):
             self.notes.append(f"{np.noun!r} is the object of {prev.text!r}, not the target")
             return True
         return False
+
+    def _asked_before(self, verb: Tok) -> bool:
+        """Whether ``verb`` opens the request or follows a request to the listener ("can
+        you get", "please fetch")."""
+        at = next((j for j in range(self.i - 1, -1, -1) if self.toks[j] is verb), None)
+        if at is None:
+            return False
+        before = self.toks[at - 1] if at > 0 else None
+        return before is None or before.has("filler", "comma", "and")
 
     def _replaces_head(self, out: Clause, np: NP, neg: bool) -> bool:
         """A named object after a head that names none takes its place: "not the red one.

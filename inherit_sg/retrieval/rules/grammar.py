@@ -1220,6 +1220,12 @@ class Grammar(Cursor):
             return side
         return None
 
+    @classmethod
+    def room_place(cls, np: NP) -> RoomConstraint:
+        """The room a room phrase names, as a constraint on the target ("go to the
+        lounge. Find the table …": the table is in the lounge)."""
+        return cls._room(np, False, np.noun, None)
+
     @staticmethod
     def _room(np: NP, neg: bool, text: str, stress: str | None) -> RoomConstraint:
         return RoomConstraint(

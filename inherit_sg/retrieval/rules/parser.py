@@ -18,7 +18,17 @@ from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, GENERIC_AREA, NP, OBJECT, ONE, VAGUE
+from inherit_sg.retrieval.rules.grammar import Grammar
+from inherit_sg.retrieval.rules.phrase import (
+    ANAPHOR,
+    GENERIC,
+    GENERIC_AREA,
+    NP,
+    OBJECT,
+    ONE,
+    ROOM,
+    VAGUE,
+)
 from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
@@ -118,11 +128,22 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
         out.places += more.places
         head.constraints += more.pending + more.functions
         return
+    if head.kind in (ONE, ANAPHOR) and turned_round(other) and _about_target(head, other, notes):
+        return  # "… the one furthest away. There's a soap dish on it."
     if head.kind in (ONE, ANAPHOR) and not head.labels and other.kind == OBJECT and other.labels:
         notes.append(f"{other.noun!r} names the target the first sentence left open")
         other.constraints = head.constraints + other.constraints
         out.head = other
         out.places += more.places
+        return
+    if head.kind == ROOM and other.kind == OBJECT and other.labels and not more.head_negated:
+        if _about_target(head, other, notes):
+            return  # "Go to the kitchen. There's a fridge in it."
+        # "Go to the lounge. Find the small round table near the bay window."
+        notes.append(f"{other.noun!r} is the target; {head.noun!r} is where")
+        out.places += [Grammar.room_place(head), *more.places]
+        head.constraints += more.pending
+        out.head = other
         return
     if _same_thing(head, other):
         head.constraints += more.pending + parts_of_head(head, other.constraints)

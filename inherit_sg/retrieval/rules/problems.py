@@ -66,6 +66,10 @@ def _is_statement(words: list[Word]) -> bool:
         return False
     if first.pos in ("VERB", "AUX"):
         return False  # "head to the gym" asks; it states no problem
+    if any(w.dep == "ROOT" and w.pos in ("NOUN", "PROPN") for w in words) and any(
+        w.dep == "acl" for w in words
+    ):
+        return False  # "the books stacked on the floor": a thing described, not a state
     asks = lx["request_words"] - ({"need"} if first.text not in lx["speaker"] else set())
     return not any(w.text in asks or w.lemma in asks for w in words)
 
@@ -102,7 +106,9 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     # a thing that does something ("the cable runs along the wall") states no problem
     # of the speaker's: with a noun subject, a problem with no subjects of its own needs
     # its state in a word other than the verb ("the room is too dark")
-    noun_subject = any(w.dep == "nsubj" and w.pos in ("NOUN", "PROPN") for w in words)
+    noun_subject = any(w.dep == "nsubj" and w.pos in ("NOUN", "PROPN") for w in words) or any(
+        w.pos == "NOUN" and object_vocab.canonical_label(w.text) for w in words
+    )  # "I left the tap running": the tap's state, not the speaker's
     loose_states = (
         _terms([w for w in words if w.pos != "VERB"], heads_only=True) if noun_subject else states
     )

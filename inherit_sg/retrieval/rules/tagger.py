@@ -327,7 +327,27 @@ def _verb_before_place(words: list[Word], i: int) -> bool:
     a command, though the vocabulary knows the word as a thing (a stand, a seat)."""
     if i + 1 >= len(words) or words[i].pos != "VERB" or words[i].tag != "VB":
         return False
+    lx = lexicon()
+    lemma = words[i].lemma
+    known = (
+        lemma in lx.viewpoint_verbs
+        or lemma in lx.locative_verbs
+        or lemma in lx.other_verbs
+        or lemma in lx.facing_verbs
+        or lemma in phrase_table()[2]
+    )
+    if not known:
+        return False  # "Stove next to the dishwasher": spaCy's guess, a thing named
     return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
+
+
+def _inside_compound(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` (a colour word) is a noun inside a compound noun, after another
+    compound noun ("ice cream scoop", "the ice cream"), so no colour."""
+    if i == 0 or words[i].pos != "NOUN":
+        return False
+    before = words[i - 1]
+    return before.pos == "NOUN" and before.dep == "compound"
 
 
 def _verb_of_subject(words: list[Word], i: int) -> bool:
@@ -368,6 +388,8 @@ def tag(words: list[Word]) -> list[Tok]:
                 if words[i].text in _ONE_WORDS:
                     tok.tags["one"] = True
                     tok.plural = _ONE_WORDS[words[i].text]
+                if tok.has("colour") and _inside_compound(words, i):
+                    tok.tags = {"unk": words[i].text}  # "ice cream scoop", not a cream one
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
                 if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
