@@ -71,6 +71,8 @@ def is_verb_here(g: Grammar) -> bool:
     prev = g.peek(-1) if g.i > 0 else None
     if prev is None:
         return not tok.has("room", "noun") or (tok.has("fverb") and g.at("det", k=1))
+    if prev.has("wh") and prev.text in ("which", "what", "whose") and tok.has("noun", "room"):
+        return False  # "which bin is closest …": "which" picks a thing, "bin" names it
     if prev.has(*_VERB_CONTEXT) or (prev.has("adv") and not prev.has("det")):
         return not prev.has("det")
     if prev.has("filler"):
@@ -149,7 +151,12 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     if sense is None and obj is None and g.at("wh"):
         sense, words = _wh_object(g, verb, words)
     if sense is None and tok.has("wh"):
-        return [], None  # "what's a good spot …": a question word, not the verb "what"
+        # "what's a good spot …", "what lamp is on": a question word, not the verb
+        # "what"; a thing named after it is read again as the question's own words
+        named = g.peek(start + 1 - g.i)
+        if named is not None and named.has("noun"):
+            g.i = start + 1
+        return [], None
     named = obj is not None and obj.kind == OBJECT and bool(obj.labels)
     if named and refused and tok.lemma in _CHOICE_VERBS:
         assert obj is not None  # "I don't want the leather chair": that one is ruled out
