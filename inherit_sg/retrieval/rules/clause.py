@@ -228,6 +228,7 @@ class ClauseParser(Grammar):
     view_end = -1  # token index just after a viewpoint clause
     more_sentences = False  # sentences follow this one (set by the request parser)
     _after_except = False  # the last negation was "except" / "apart from"
+    _definite = False  # the last noun phrase opened with "the" / "that" / "this"
 
     def parse(self, refine: bool = False, out: Clause | None = None) -> Clause:
         """Walk the tokens once, building the clause (continuing ``out`` when given)."""
@@ -254,6 +255,10 @@ class ClauseParser(Grammar):
                     candidate.places = []
                     if candidate.excluded and out.head is not None:
                         self._exclude(out, candidate)
+                    elif out.head_negated and out.head is not None and candidate.kind == ONE:
+                        self._contrast_one(
+                            out, candidate
+                        )  # "avoid the blue bin, use the green one"
                     elif out.head is None:
                         out.head = candidate
                         out.head_negated = candidate.excluded
@@ -272,7 +277,8 @@ class ClauseParser(Grammar):
                 self._after_except = True
             elif tok.has("neg", "except"):
                 self.advance()
-                self.negate()
+                if not self._mental_after():
+                    self.negate()  # "I can't remember where I left it": no exclusion
                 self._after_except = tok.has("except")
             elif tok.has("emph", "hedge"):
                 self.advance()
@@ -606,7 +612,13 @@ class ClauseParser(Grammar):
             else:
                 out.pending.append(con)
 
-    def _negate_head_places(self, out: Clause) -> None:
+    def _mental_after(self) -> bool:
+        """Whether a verb of knowing follows ("can't remember", "don't know")."""
+        tok = self.peek()
+        return tok is not None and tok.lemma in lexicon().mental_verbs
+
+    @staticmethod
+    def _negate_head_places(out: Clause) -> None:
         """Negate the places the negated head was given, now that a contrasting phrase
         keeps its kind ("not the toilet in the WC, the other one": not in the WC)."""
         mine = {id(c) for c in out.negated_head_places}
@@ -628,18 +640,7 @@ class ClauseParser(Grammar):
                 self._exclude(out, out.head)  # "not the sofa but the armchair"
                 out.head, out.head_negated = None, False
             elif np.kind == ONE or _same_kind(out, np):
-                # "not the white cabinet, the brown one", "not the toilet in the WC, the
-                # other toilet": the kind stays and the first one's details are negated
-                old = out.head
-                old.constraints = [
-                    replace(c, negated=not c.negated) for c in old.constraints
-                ] + np.constraints
-                old.places += np.places
-                self._negate_head_places(out)
-                out.head_negated = False
-                self.notes.append(
-                    f"'not the {old.noun}' then 'one': the kind stays, its details are negated"
-                )
+                self._contrast_one(out, np)
                 return
         own_places = [replace(c, negated=not c.negated) if flip else c for c in np.places]
         out.places += own_places
@@ -672,7 +673,25 @@ class ClauseParser(Grammar):
             j -= 1  # "grab out the …"
         if self._verb_of_head(out, np, neg, j) or self._next_errand(out, np, neg, j):
             return
+        self._definite = self.toks[start].text in ("the", "that", "this")
         self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
+
+    def _contrast_one(self, out: Clause, np: NP) -> None:
+        """ "not the white cabinet, the brown one", "not the toilet in the WC, the other
+        toilet", "avoid the blue bin, use the green one": the kind stays and the first
+        one's details are negated."""
+        old = out.head
+        assert old is not None
+        old.constraints = [replace(c, negated=not c.negated) for c in old.constraints] + (
+            np.constraints
+        )
+        old.places += np.places
+        old.other = old.other or np.other  # "not that remote, the other one"
+        self._negate_head_places(out)
+        out.head_negated = False
+        self.notes.append(
+            f"'not the {old.noun}' then 'one': the kind stays, its details are negated"
+        )
 
     def _negation_open(self) -> bool:
         """Whether a negation earlier in this clause still holds at the current token:
@@ -884,6 +903,8 @@ class ClauseParser(Grammar):
                     weight=self.weight("relation"), text=f"holds {np.noun}",
                 )
             )  # fmt: skip
+        elif not neg and head.kind in (OBJECT, ROOM) and self._placed_by_head(out, np):
+            pass  # "go to the fridge, the cabinet right above it"
         elif head.kind == ANAPHOR:
             head.constraints += np.constraints
         elif np.kind == ANAPHOR and not np.plural and not neg:
@@ -891,6 +912,32 @@ class ClauseParser(Grammar):
             head.constraints += np.constraints
         else:
             self.notes.append(f"ignored second noun phrase {np.noun or np.kind!r}")
+
+    def _placed_by_head(self, out: Clause, np: NP) -> bool:
+        """A named thing placed by "it" after the head ("go to the fridge, the cabinet
+        right above it"): it is the target, and "it" is the head named before."""
+        head = out.head
+        assert head is not None
+        if np.kind != OBJECT or not np.labels or not self._definite:
+            return False  # "…, there are shoes under it": about the head
+        by_it = [
+            c
+            for c in np.constraints
+            if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
+        ]
+        if not by_it:
+            return False
+        np.constraints = [
+            replace(c, landmark=head.landmark(), text=c.text.replace("anaphor", head.noun))
+            if c in by_it
+            else c
+            for c in np.constraints
+        ]
+        if head.kind == ROOM:
+            out.places.append(self._place(head, False))
+        self.notes.append(f"{np.noun!r} is the target; 'it' is the {head.noun!r}")
+        out.head = np
+        return True
 
     @staticmethod
     def _exclude(out: Clause, np: NP) -> None:

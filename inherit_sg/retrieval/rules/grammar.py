@@ -129,6 +129,11 @@ class Grammar(Cursor):
         tok = self.peek()
         if np.kind == ROOM and tok is not None and tok.has("num") and tok.text.isdigit():
             np.words.append(self.advance().text)  # a numbered room: "bedroom 2"
+        elif np.kind == ROOM and tok is not None and tok.has("one") and tok.text in ("one", "ones"):
+            self.advance()  # "the kitchen one": one of the kind spoken of, in the kitchen
+            np.places.append(self._room(np, False, np.noun, None))
+            np.kind, np.labels, np.words, np.room_type = ONE, [], [], None
+            np.plural = tok.text == "ones"
         self._postmodifiers(np, landmark)
         self._finish(np)
         return np
@@ -493,6 +498,8 @@ class Grammar(Cursor):
             return False  # "a lamp on it" closes a with-clause
         if after_be and tok.text in ("on", "off") and self._state_word(np, tok):
             return True  # "the lamp that's not on"
+        if after_be and self._doing_word(np, tok):
+            return True  # "the door that doesn't squeak", "the laptop that isn't charging"
         if tok.has("prep", "away", "from") and self._direction(np):
             return True
         if tok.text == "from" and self._counted_from(np):
@@ -720,6 +727,28 @@ class Grammar(Cursor):
             AttributeConstraint(
                 key="state", value=value, negated=self.take_neg(), weight=self.weight("attribute"),
                 text=value,
+            )
+        )  # fmt: skip
+        return True
+
+    def _doing_word(self, np: NP, tok: Tok) -> bool:
+        """After "that (doesn't)" / "that is (not)": a verb with no object says what the
+        thing does or is doing ("that doesn't wobble", "isn't charging"), a state."""
+        if tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP"):
+            return False
+        if tok.has("prep", "noun", "be", "have", "fverb", "placement", "view"):
+            return False
+        before = self.peek(-1)
+        if before is not None and before.has("modal") and before.text.split()[0] not in _DO:
+            return False  # "something that could help": what it can do, no state
+        after = self.peek(1)
+        if after is not None and not after.has("comma", "and", "but", "or", "sub", "rel"):
+            return False  # "that holds the TV", "that sits by …": more than a state
+        self.advance()
+        np.constraints.append(
+            AttributeConstraint(
+                key="state", value=tok.lemma or tok.text, negated=self.take_neg(),
+                weight=self.weight("attribute"), text=tok.text,
             )
         )  # fmt: skip
         return True
@@ -1240,6 +1269,7 @@ class Grammar(Cursor):
 
 
 _CENTRE_WORDS = frozenset({"center", "centre", "middle"})
+_DO = frozenset({"do", "does", "did"})
 
 
 def _open_label(run: list[Tok]) -> str:

@@ -121,7 +121,8 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
     if other is not None and out.head_negated and other.kind == ONE:
         head.constraints = [replace(c, negated=not c.negated) for c in head.constraints]
         head.constraints += other.constraints
-        out.places += other.places
+        ClauseParser._negate_head_places(out)  # "Not the bathroom sink. The kitchen one."
+        out.places += other.places + more.places
         out.head_negated = False  # "Never use the red towel. Grab a different one."
         return
     if other is None:

@@ -134,4 +134,24 @@ def correct_spelling(text: str) -> tuple[str, list[tuple[str, str]]]:
         fixes.append((word, right))
         return right.capitalize() if word[0].isupper() else right
 
-    return _WORD.sub(fix, text), fixes
+    text = _WORD.sub(fix, text)
+    return _CLOSET_TO.sub(lambda m: _closest_typo(m, fixes), text), fixes
+
+
+# "the monitor closet to the window": "closest" with a dropped letter, after a thing's name
+# (not "the coat closet to the left", a closet of its own).
+_CLOSET_TO = re.compile(r"\b([A-Za-z]+) (closet) (to|from)\b", re.IGNORECASE)
+
+
+_CLOSET_KINDS = frozenset(
+    {"coat", "linen", "broom", "storage", "hall", "hallway", "utility", "supply", "clothes",
+     "shoe", "cleaning", "in", "bedroom", "bathroom", "master", "guest", "towel", "closet"}
+)  # fmt: skip
+
+
+def _closest_typo(match: re.Match[str], fixes: list[tuple[str, str]]) -> str:
+    thing = match.group(1).lower()
+    if thing in _CLOSET_KINDS or not object_vocab.canonical_label(thing):
+        return match.group(0)  # "the closet to the left", "the coat closet to the left"
+    fixes.append((match.group(2), "closest"))
+    return f"{match.group(1)} closest {match.group(3)}"

@@ -254,6 +254,9 @@ def _single(word: Word, first: bool) -> Tok:
     _grammar(tok, word, first)
     if tok.has("be", "modal", "wh", "rel", "det"):
         return tok
+    if word.pos == "VERB" and word.tag in ("VBN", "VBD") and word.dep == "amod":
+        tok.tags["adj"] = ("state", text)  # "the cracked one", "a folded towel"
+        return tok
     if word.pos in ("VERB", "AUX") and not is_known_word(text):
         tok.tags["unk"] = text  # no English verb: a name spaCy guessed ("roundmetaltable")
     elif word.pos in ("VERB", "AUX"):
@@ -310,6 +313,11 @@ def _open_readings(tok: Tok, word: Word) -> None:
 
 
 _PARTICLES = ("on", "off", "up", "down", "out")
+# Verbs that take a particle before their object: "switch on the lamp", "light up the hall".
+_PARTICLE_VERBS = frozenset(
+    {"turn", "switch", "shut", "power", "flip", "flick", "light", "plug", "pick", "put",
+     "wipe", "clean", "hang", "take", "set", "lock", "open", "close", "dim", "hand"}
+)  # fmt: skip
 
 
 def _verb_with_particle(words: list[Word], i: int) -> bool:
@@ -318,6 +326,8 @@ def _verb_with_particle(words: list[Word], i: int) -> bool:
     if i + 2 >= len(words) or words[i].pos != "VERB":
         return False  # "lamp on the desk" names a lamp: only spaCy's verbs
     particle, after = words[i + 1], words[i + 2]
+    if not _known_verb(words[i].lemma):
+        return False  # "Mirror on the back of the door", "towel on the rack"
     return particle.text in _PARTICLES and after.pos == "DET"
 
 
@@ -327,18 +337,25 @@ def _verb_before_place(words: list[Word], i: int) -> bool:
     a command, though the vocabulary knows the word as a thing (a stand, a seat)."""
     if i + 1 >= len(words) or words[i].pos != "VERB" or words[i].tag != "VB":
         return False
+    if not _known_verb(words[i].lemma):
+        return False  # "Stove next to the dishwasher": spaCy's guess, a thing named
+    return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
+
+
+def _known_verb(lemma: str) -> bool:
+    """Whether the vocabulary knows ``lemma`` as a verb of some kind (a verb of moving,
+    looking, placing, a function verb or one of the other verbs), so that a word spaCy
+    tags as a verb at the start of a request is read as one ("Turn on the lamp"; not
+    "Mirror on the back of the door")."""
     lx = lexicon()
-    lemma = words[i].lemma
-    known = (
+    return (
         lemma in lx.viewpoint_verbs
         or lemma in lx.locative_verbs
         or lemma in lx.other_verbs
         or lemma in lx.facing_verbs
+        or lemma in _PARTICLE_VERBS
         or lemma in phrase_table()[2]
     )
-    if not known:
-        return False  # "Stove next to the dishwasher": spaCy's guess, a thing named
-    return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
 
 
 def _inside_compound(words: list[Word], i: int) -> bool:
@@ -417,8 +434,11 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.tags.setdefault("overb", words[i].lemma)
                     tok.pos, tok.tag = "VERB", "VB"
                 imperative = tok.tag == "VB" and first and tok.pos == "VERB"
-                if imperative and not tok.has("fverb", "prep", "noun", "room"):
+                if imperative and not tok.has("fverb", "prep", "noun", "room", "except"):
                     tok.tags["seek"] = words[i].lemma
+            if tok.has("except"):
+                for key in ("seek", "overb", "fverb"):  # "avoid the living room": not X
+                    tok.tags.pop(key, None)
             out.append(tok)
             i += n
         else:

@@ -153,8 +153,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     if sense is None and tok.has("wh"):
         # "what's a good spot …", "what lamp is on": a question word, not the verb
         # "what"; a thing named after it is read again as the question's own words
-        named = g.peek(start + 1 - g.i)
-        if named is not None and named.has("noun"):
+        asked = g.peek(start + 1 - g.i)
+        if asked is not None and asked.has("noun"):
             g.i = start + 1
         return [], None
     named = obj is not None and obj.kind == OBJECT and bool(obj.labels)
