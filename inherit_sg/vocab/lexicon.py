@@ -109,6 +109,7 @@ class Lexicon:
     meta_nouns: frozenset[str]
     be_like: frozenset[str]
     quantity_nouns: frozenset[str]
+    on_rooms: frozenset[str]
     abstract_nouns: frozenset[str]
     position_nouns: dict[str, str]
     place_modifiers: dict[str, tuple[str, str]]
@@ -213,6 +214,7 @@ def lexicon() -> Lexicon:
         meta_nouns=frozenset(_list(words, "meta_nouns", where)),
         be_like=frozenset(_list(words, "be_like", where)),
         quantity_nouns=frozenset(_list(words, "quantity_nouns", where)),
+        on_rooms=frozenset(_list(words, "on_rooms", where)),
         abstract_nouns=frozenset(_list(words, "abstract_nouns", where)),
         position_nouns=_str_map(_section(words, "position_nouns"), "words.position_nouns"),
         place_modifiers=_place_map(_section(words, "place_modifiers"), "words.place_modifiers"),

@@ -122,7 +122,7 @@ class Cursor:
             return self.np_start(k + 1)  # "important documents", "very big chair"
         if tok is not None and tok.has("seeker") and self.nounish(k + 1):
             return True  # "group discussions"
-        if tok is not None and tok.has("side", "dir") and self.nounish(k + 1):
+        if tok is not None and tok.has("side", "dir", "middle") and self.nounish(k + 1):
             return True  # "leftmost monitor on the desk", "left nightstand" (no "the")
         if tok is None or not tok.has(*NP_START):
             return False

@@ -736,8 +736,10 @@ class Grammar(Cursor):
         thing does or is doing ("that doesn't wobble", "isn't charging"), a state."""
         if tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP"):
             return False
-        if tok.has("prep", "noun", "be", "have", "fverb", "placement", "view"):
+        if tok.has("prep", "noun", "be", "have", "placement", "view"):
             return False
+        if tok.has("fverb") and not self._neg:
+            return False  # "the desk that serves for work": a function
         before = self.peek(-1)
         if before is not None and before.has("modal") and before.text.split()[0] not in _DO:
             return False  # "something that could help": what it can do, no state
@@ -747,7 +749,8 @@ class Grammar(Cursor):
         self.advance()
         np.constraints.append(
             AttributeConstraint(
-                key="state", value=tok.lemma or tok.text, negated=self.take_neg(),
+                key="state", value=tok.text if tok.tag == "VBG" else (tok.lemma or tok.text),
+                negated=self.take_neg(),
                 weight=self.weight("attribute"), text=tok.text,
             )
         )  # fmt: skip
@@ -901,11 +904,24 @@ class Grammar(Cursor):
         named thing "in the middle of" others stands between them)."""
         if tok.tags.get("prep") != "between" or tok.text == "between":
             return False
+        if np.kind == OBJECT and np.labels and (end := self._count_only(1)):
+            self.i += end  # "the monitor in the middle of the three": of the monitors
+            np.superlative = "middle"
+            return True
         if np.kind != ONE or np.labels or (sub := self._take_group(1)) is None:
             return False
         np.superlative = "middle"
         self._partitive(np, sub)
         return True
+
+    def _count_only(self, k: int) -> int:
+        """Tokens of a bare count starting ``k`` ahead ("the three", "the 4"), with no
+        noun after it; 0 when there is none."""
+        j = k + 1 if self.at("det", k=k) else k
+        tok = self.peek(j)
+        if tok is None or not tok.has("num") or tok.has("one") or self.nounish(j + 1):
+            return 0
+        return j + 1
 
     def _side_of_group(self, np: NP, k: int) -> bool:
         """ "the second from the right of the four chairs": the side is counted from, and
@@ -1004,7 +1020,14 @@ class Grammar(Cursor):
                 where=where, negated=neg, weight=weighted("placement", stress), text=text
             )
             return [placement, *[replace(c, negated=neg) for c in rooms], *places]
-        if lm.kind in (ROOM, AREA) and predicate in _PLACE_PREDICATES and tok.text != "on":
+        on_room = lm.kind == ROOM and bool(lm.words) and lm.words[-1] in lexicon().on_rooms
+        if (
+            lm.kind in (ROOM, AREA)
+            and predicate in _PLACE_PREDICATES
+            and (
+                tok.text != "on" or on_room  # "on the landing", "on the deck": in that room
+            )
+        ):
             if lm.kind == ROOM:
                 place: Constraint = self._room(lm, neg, text, stress)
             else:
