@@ -58,6 +58,20 @@ def _place_map(table: dict[str, Any], where: str) -> dict[str, tuple[str, str]]:
     return out
 
 
+def _predicate_map(table: dict[str, Any], where: str) -> dict[str, str]:
+    """``word = "predicate"`` entries, each a one-landmark relation predicate."""
+    from inherit_sg.retrieval.constraints import PREDICATES
+
+    out = _str_map(table, where)
+    for key, value in out.items():
+        if value not in PREDICATES or value == "between":
+            raise VocabularyError(
+                f"lexicon.toml [{where}]: {key!r} must map to a one-landmark relation "
+                f"predicate, got {value!r}"
+            )
+    return out
+
+
 def _int_map(table: dict[str, Any], where: str) -> dict[str, int]:
     out: dict[str, int] = {}
     for k, v in table.items():
@@ -183,7 +197,7 @@ def lexicon() -> Lexicon:
         away_prepositions=frozenset(_list(_section(rel, "negating"), "away", where)),
         outside_prepositions=frozenset(_list(_section(rel, "negating"), "outside", where)),
         with_inverse=_str_map(_section(rel, "with_inverse"), "relations.with_inverse"),
-        relation_verbs=_str_map(_section(rel, "verbs"), "relations.verbs"),
+        relation_verbs=_predicate_map(_section(rel, "verbs"), "relations.verbs"),
         superlatives=_str_map(_section(rank, "superlatives"), "ranking.superlatives"),
         ordinals=_int_map(_section(rank, "ordinals"), "ranking.ordinals"),
         numbers=_int_map(_section(rank, "numbers"), "ranking.numbers"),

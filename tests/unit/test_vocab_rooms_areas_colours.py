@@ -283,3 +283,24 @@ def test_every_place_modifier_names_a_predicate_and_a_known_thing() -> None:
     for word, (predicate, place) in lexicon().place_modifiers.items():
         assert predicate in PREDICATES, word
         assert objects.labels_for(place), word
+
+
+def test_relation_verb_with_two_landmark_predicate_is_refused(data_dir: Path) -> None:
+    from inherit_sg.vocab.lexicon import lexicon
+
+    lexicon.cache_clear()
+    _edit(data_dir / "lexicon.toml", '"cover" = "near"', '"cover" = "between"')
+    try:
+        with pytest.raises(VocabularyError, match=r"relations.verbs.*'cover'.*one-landmark"):
+            lexicon()
+    finally:
+        lexicon.cache_clear()
+
+
+def test_relation_verbs_and_on_rooms_are_read() -> None:
+    from inherit_sg.vocab.lexicon import lexicon
+
+    lx = lexicon()
+    assert lx.relation_verbs["cover"] == "near" and lx.relation_verbs["hold"] == "supports"
+    assert {"landing", "deck", "porch"} <= lx.on_rooms
+    assert all(rooms.room_type(word) for word in ("landing", "deck", "porch", "balcony"))

@@ -40,6 +40,7 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.tagger import Tok
+from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab.lexicon import lexicon
 
 _SKIP = (
@@ -149,6 +150,8 @@ def turned_round(other: NP) -> list[Constraint]:
     out: list[Constraint] = []
     for con in pointing:
         predicate = inverse.get(con.predicate, con.predicate)
+        if predicate == "between":
+            predicate = "near"  # "the sink is in the middle of it": one landmark, near it
         out.append(
             RelationConstraint(
                 predicate=predicate, landmark=landmark, weight=con.weight,
@@ -229,6 +232,8 @@ class ClauseParser(Grammar):
     more_sentences = False  # sentences follow this one (set by the request parser)
     _after_except = False  # the last negation was "except" / "apart from"
     _definite = False  # the last noun phrase opened with "the" / "that" / "this"
+    later = False  # a sentence after the one that named the target (set by the parser)
+    said_of_it = False  # a later sentence opened "it is …": it describes the target
 
     def parse(self, refine: bool = False, out: Clause | None = None) -> Clause:
         """Walk the tokens once, building the clause (continuing ``out`` when given)."""
@@ -338,6 +343,7 @@ class ClauseParser(Grammar):
         if not self.np_start(j) or (self.at("anaphor", k=j) and not self.at("det", k=j)):
             return False
         words = " ".join(t.text for t in self.toks[self.i : self.i + k + 1])
+        self.said_of_it = self.later and tok.text in ("it", "this", "its")
         self.notes.append(f"frame: '{words}' introduces the target")
         self.i += k + 1  # "not" stays: "it's not the white cabinet, it's the brown one"
         return True
@@ -839,6 +845,33 @@ class ClauseParser(Grammar):
         before = self.toks[at - 1] if at > 0 else None
         return before is None or before.has("filler", "comma", "and")
 
+    def as_description(self, np: NP) -> list[Constraint]:
+        """What a noun phrase in a description of the target says of it: a material
+        noun ("plastic", "stainless steel") is its material; a part ("the lampshade is
+        white") is a part of it; attributes of anything else are not the target's."""
+        word = np.words[-1] if np.words else ""
+        material = lexicon().materials.get(" ".join(np.words)) or lexicon().materials.get(word)
+        said = [c for c in np.constraints if isinstance(c, AttributeConstraint)]
+        if material is not None:
+            self.notes.append(f"{np.noun!r} is the target's material")
+            return [
+                *said,
+                AttributeConstraint(
+                    key="material", value=material, weight=self.weight("attribute"),
+                    text=np.noun,
+                ),
+            ]  # fmt: skip
+        if said and object_vocab.is_part(word, None):
+            self.notes.append(f"{np.noun!r} is a part of the target")
+            values = [str(c.value) for c in said]
+            return [
+                AttributeConstraint(
+                    key="part", value=" ".join([*values, word]), weight=self.weight("attribute"),
+                    text=f"{' '.join(values)} {word}",
+                )
+            ]  # fmt: skip
+        return []
+
     def _replaces_head(self, out: Clause, np: NP, neg: bool) -> bool:
         """A named object after a head that names none takes its place: "not the red one.
         go to another lamp", "go to the kitchen and find the mug", "there should be a lamp
@@ -850,6 +883,11 @@ class ClauseParser(Grammar):
         if head.kind == ANAPHOR and (found := turned_round(np)):
             head.constraints += found  # "it is red and has a pillow on it"
             self.notes.append(f"'{np.noun} … it': a relation of the target, turned round")
+            return True
+        if self.said_of_it and head.kind == ONE and not head.labels:
+            # "… It is yellow plastic.", "It is tall and thin, the lampshade is white":
+            # the target described, not a new one named
+            head.constraints += self.as_description(np)
             return True
         if head.kind in (ONE, ANAPHOR, VAGUE) and not head.labels:
             np.constraints = head.constraints + np.constraints

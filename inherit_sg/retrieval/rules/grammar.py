@@ -428,8 +428,15 @@ class Grammar(Cursor):
         while (tok := self.peek()) is not None:
             if tok.text.split()[0] in VIEW_OPENERS and (tok.has("view") or self.at("seeker", k=1)):
                 break  # "the left one if you're facing the headboard": a viewpoint
-            if tok.has("and") and after_be and self.at("colour", "adj", "material", "be", k=1):
-                pass  # "a chair that is red and made of wood"
+            bare = np.kind == ONE and not np.labels  # "it is long and made of wood"
+            if (
+                tok.has("and")
+                and (after_be or bare)
+                and self.at("colour", "adj", "material", "be", k=1)
+            ):
+                after_be = True  # "a chair that is red and made of wood", "yellow and plastic"
+            elif tok.has("comma") and (after_be or bare) and self.text_at(1).startswith("made "):
+                after_be = True  # "it is long and L shaped, made of black granite"
             elif tok.has("and") and after_be and self.at("have", k=1) and self.np_start(2):
                 pass  # "the chair is grey and has four legs": its parts, not a new errand
             elif tok.has("and", "rel") and (after_be or tok.has("rel")) and self._relation_verb(1):
@@ -1149,6 +1156,8 @@ class Grammar(Cursor):
             return self._part(np, lm, neg, word)  # "a cup with no lid on it": the cup's lid
         if on_it is not None:
             predicate = lexicon().with_inverse.get(on_it.tags["prep"], on_it.tags["prep"])
+            if predicate == "between":
+                predicate = "contains"  # "a shelf with books in the middle of it"
         return RelationConstraint(
             predicate=predicate,
             landmark=lm.landmark(),

@@ -101,8 +101,11 @@ def _same_thing(head: NP, other: NP) -> bool:
     )
 
 
-def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
-    """Fold a later sentence's clause into the request's clause."""
+def _merge_sentence(
+    out: Clause, more: Clause, notes: list[str], said: ClauseParser | None = None
+) -> None:
+    """Fold a later sentence's clause into the request's clause (``said``: the parser
+    that read it)."""
     head = out.head
     assert head is not None
     if out.viewpoint is None:
@@ -160,6 +163,11 @@ def _merge_sentence(out: Clause, more: Clause, notes: list[str]) -> None:
         return
     if _about_target(head, other, notes):
         return
+    if said is not None and said.said_of_it and other.kind == OBJECT:
+        described = said.as_description(other)  # "… It is yellow plastic."
+        if described:
+            head.constraints += described
+            return
     notes.append(f"sentence about {other.noun or other.kind!r} (not the target) ignored")
 
 
@@ -213,12 +221,14 @@ def parse_uncached(text: str) -> ParsedQuery:
         correcting = _corrects(sentence)
         if correcting:
             tokens = tag(_after_correction(sentence))
-        more = ClauseParser(tokens, notes).parse(refine)
+        later = ClauseParser(tokens, notes)
+        later.later = True
+        more = later.parse(refine)
         if correcting and more.head is not None and more.head.kind == OBJECT:
             notes.append(f"'{more.head.noun}' corrects the earlier request")
             clause = more  # "can you find the cat? no wait, I mean the cat's carrier"
         else:
-            _merge_sentence(clause, more, notes)
+            _merge_sentence(clause, more, notes, later)
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads

@@ -137,8 +137,39 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
         while words and words[-1] is COMMA:
             words.pop()
         if words:
-            out.append(words)
+            out.append(_its_is(words))
     return out, fixes
+
+
+_IT = Word("it", "it", "PRON", "PRP", "nsubj")
+_IS = Word("is", "be", "AUX", "VBZ", "ROOT")
+
+
+def _its_is(words: list[Word]) -> list[Word]:
+    """ "its" written for "it's" before what describes it ("its tall and stainless
+    steel", "its pretty short"): "it is". Before a noun it stays a possessive ("its
+    wooden legs"), except before a material ("its black metal")."""
+    if not any(w.text == "its" for w in words):
+        return words
+    from inherit_sg.vocab.lexicon import lexicon
+
+    materials = lexicon().materials
+    out: list[Word] = []
+    for i, word in enumerate(words):
+        if word.text != "its" or word.tag != "PRP$":
+            out.append(word)
+            continue
+        j = i + 1
+        while j < len(words) and words[j].pos == "ADV":
+            j += 1
+        described = j < len(words) and words[j].pos == "ADJ"
+        while j < len(words) and (words[j].pos in ("ADJ", "CCONJ", "ADV") or words[j] is COMMA):
+            j += 1
+        if described and (j == len(words) or words[j].pos != "NOUN" or words[j].text in materials):
+            out += [_IT, _IS]
+        else:
+            out.append(word)
+    return out
 
 
 def tokenize(text: str) -> list[str]:
