@@ -304,3 +304,11 @@ def test_relation_verbs_and_on_rooms_are_read() -> None:
     assert lx.relation_verbs["cover"] == "near" and lx.relation_verbs["hold"] == "supports"
     assert {"landing", "deck", "porch"} <= lx.on_rooms
     assert all(rooms.room_type(word) for word in ("landing", "deck", "porch", "balcony"))
+
+
+def test_every_relation_verb_names_a_one_landmark_predicate() -> None:
+    from inherit_sg.retrieval.constraints import PREDICATES
+    from inherit_sg.vocab.lexicon import lexicon
+
+    for verb, predicate in lexicon().relation_verbs.items():
+        assert predicate in PREDICATES and predicate != "between", verb
