@@ -121,6 +121,19 @@ def _merge_sentence(
             return
         ClauseParser._exclude(out, other)  # "Under the window, the heater. Not the fan."
         return
+    if (
+        other is not None
+        and out.head_negated
+        and not more.head_negated
+        and other.kind == OBJECT
+        and other.labels
+        and not set(other.labels) & set(head.labels)
+    ):
+        # "Never the good china. Grab a plastic plate.": the first one ruled out
+        ClauseParser._exclude(out, head)
+        out.head, out.head_negated = other, False
+        out.places += more.places
+        return
     if other is not None and out.head_negated and other.kind == ONE:
         head.constraints = [replace(c, negated=not c.negated) for c in head.constraints]
         head.constraints += other.constraints
@@ -226,6 +239,10 @@ def parse_uncached(text: str) -> ParsedQuery:
         more = later.parse(refine)
         if correcting and more.head is not None and more.head.kind == OBJECT:
             notes.append(f"'{more.head.noun}' corrects the earlier request")
+            if clause.head is not None and clause.head_negated and clause.head.labels:
+                # "Neither the sofa nor the armchair. I meant the beanbag."
+                ClauseParser._exclude(more, clause.head)
+                more.excluded_labels += clause.excluded_labels
             clause = more  # "can you find the cat? no wait, I mean the cat's carrier"
         else:
             _merge_sentence(clause, more, notes, later)
