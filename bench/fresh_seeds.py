@@ -83,7 +83,11 @@ def main() -> None:
     """Run the houses (unless --report-only) and write the summary."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", default="", help="comma-separated house seeds")
-    ap.add_argument("--noise", default="clean,noisy", help="clean, noisy or both")
+    ap.add_argument(
+        "--noise",
+        default="clean,noisy",
+        help="comma-separated noise levels (clean, noisy; default: both)",
+    )
     ap.add_argument("--max-queries", type=int, default=400)
     ap.add_argument("--work", type=Path, help="keep (and reuse) datasets and maps here")
     ap.add_argument("--report-only", action="store_true")

@@ -436,6 +436,9 @@ def tag(words: list[Word]) -> list[Tok]:
                 imperative = tok.tag == "VB" and first and tok.pos == "VERB"
                 if imperative and not tok.has("fverb", "prep", "noun", "room", "except"):
                     tok.tags["seek"] = words[i].lemma
+            after_det = i > 0 and words[i - 1].pos == "DET"
+            if n == 1 and tok.has("away", "prep") and after_det and words[i].pos == "ADJ":
+                tok.tags = {"adj": ("other", words[i].text)}  # "the outside tap": a kind
             if tok.has("except"):
                 for key in ("seek", "overb", "fverb"):  # "avoid the living room": not X
                     tok.tags.pop(key, None)
