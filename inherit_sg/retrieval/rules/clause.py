@@ -231,7 +231,6 @@ class ClauseParser(Grammar):
     view_end = -1  # token index just after a viewpoint clause
     more_sentences = False  # sentences follow this one (set by the request parser)
     _after_except = False  # the last negation was "except" / "apart from"
-    _definite = False  # the last noun phrase opened with "the" / "that" / "this"
     later = False  # a sentence after the one that named the target (set by the parser)
     said_of_it = False  # a later sentence opened "it is …": it describes the target
 
@@ -261,9 +260,8 @@ class ClauseParser(Grammar):
                     if candidate.excluded and out.head is not None:
                         self._exclude(out, candidate)
                     elif out.head_negated and out.head is not None and candidate.kind == ONE:
-                        self._contrast_one(
-                            out, candidate
-                        )  # "avoid the blue bin, use the green one"
+                        # "avoid the blue bin, use the green one"
+                        self._contrast_one(out, candidate)
                     elif out.head is None:
                         out.head = candidate
                         out.head_negated = candidate.excluded
@@ -663,7 +661,7 @@ class ClauseParser(Grammar):
             out.exclude_previous = True
             return
         if out.head is None:
-            if self._stray_object(out, np, prev):
+            if self._stray_object(out, np, prev, start):
                 return
             if flip:  # "not the red one. …": the one excluded, described by negation
                 np.constraints = [replace(c, negated=not c.negated) for c in np.constraints]
@@ -679,8 +677,9 @@ class ClauseParser(Grammar):
             j -= 1  # "grab out the …"
         if self._verb_of_head(out, np, neg, j) or self._next_errand(out, np, neg, j):
             return
-        self._definite = self.toks[start].text in ("the", "that", "this")
-        self._second_phrase(out, np, neg, prev is not None and prev.has("and", "or"))
+        definite = self.toks[start].text in ("the", "that", "this")
+        coordinated = prev is not None and prev.has("and", "or")
+        self._second_phrase(out, np, neg, coordinated, definite=definite)
 
     def _contrast_one(self, out: Clause, np: NP) -> None:
         """ "not the white cabinet, the brown one", "not the toilet in the WC, the other
@@ -817,14 +816,14 @@ class ClauseParser(Grammar):
         self._sought_near_head(out, np, "is asked for")
         return True
 
-    def _stray_object(self, out: Clause, np: NP, prev: object) -> bool:
+    def _stray_object(self, out: Clause, np: NP, prev: object, start: int) -> bool:
         """An unknown noun that is the object of an unparsed verb ("after finishing my
         meal") or of a purpose that was not understood is not the request's head."""
         if np.kind != OBJECT or np.known or prev is None:
             return False
         assert isinstance(prev, Tok)
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
-        if after_verb and prev.lemma in _FETCH_VERBS and self._asked_before(prev):
+        if after_verb and prev.lemma in _FETCH_VERBS and self._asked_before(start - 1):
             after_verb = False  # "can you get the salt": what is fetched is sought
         # "i don't know the name, the thing above the tv": the object of a verb of
         # knowing or saying in a filler phrase (not of "where can i find")
@@ -836,12 +835,9 @@ class ClauseParser(Grammar):
             return True
         return False
 
-    def _asked_before(self, verb: Tok) -> bool:
-        """Whether ``verb`` opens the request or follows a request to the listener ("can
-        you get", "please fetch")."""
-        at = next((j for j in range(self.i - 1, -1, -1) if self.toks[j] is verb), None)
-        if at is None:
-            return False
+    def _asked_before(self, at: int) -> bool:
+        """Whether the verb at token ``at`` opens the request or follows a request to the
+        listener ("can you get", "please fetch")."""
         before = self.toks[at - 1] if at > 0 else None
         return before is None or before.has("filler", "comma", "and")
 
@@ -901,7 +897,11 @@ class ClauseParser(Grammar):
         out.head = np
         return True
 
-    def _second_phrase(self, out: Clause, np: NP, neg: bool, coordinated: bool) -> None:
+    def _second_phrase(
+        self, out: Clause, np: NP, neg: bool, coordinated: bool, *, definite: bool = False
+    ) -> None:
+        """A noun phrase after the head: its details, a new target or nothing (``definite``:
+        it opened with "the" / "that" / "this")."""
         head = out.head
         assert head is not None
         prev_except = self._after_except
@@ -941,7 +941,7 @@ class ClauseParser(Grammar):
                     weight=self.weight("relation"), text=f"holds {np.noun}",
                 )
             )  # fmt: skip
-        elif not neg and head.kind in (OBJECT, ROOM) and self._placed_by_head(out, np):
+        elif not neg and definite and head.kind in (OBJECT, ROOM) and self._placed_by_head(out, np):
             pass  # "go to the fridge, the cabinet right above it"
         elif head.kind == ANAPHOR:
             head.constraints += np.constraints
@@ -953,11 +953,12 @@ class ClauseParser(Grammar):
 
     def _placed_by_head(self, out: Clause, np: NP) -> bool:
         """A named thing placed by "it" after the head ("go to the fridge, the cabinet
-        right above it"): it is the target, and "it" is the head named before."""
+        right above it"): it is the target, and "it" is the head named before. Only a
+        definite phrase ("the cabinet"): "…, there are shoes under it" is about the head."""
         head = out.head
         assert head is not None
-        if np.kind != OBJECT or not np.labels or not self._definite:
-            return False  # "…, there are shoes under it": about the head
+        if np.kind != OBJECT or not np.labels:
+            return False
         by_it = [
             c
             for c in np.constraints
