@@ -70,6 +70,14 @@ def test_sentences_and_spelling() -> None:
     assert any("spelling" in note for note in parsed.notes)
 
 
+def test_contractions_are_restored_as_whole_words() -> None:
+    # any case for longer forms, the longest form first ("its an" before "its a")
+    assert correct_spelling("Its an odd one, Dont move it")[0] == "it's an odd one, don't move it"
+    # one-letter forms only in lower case, and never inside a word or before an apostrophe
+    assert correct_spelling("can u find the U-shaped sofa")[0] == ("can you find the U-shaped sofa")
+    assert correct_spelling("the dont's list in the rm")[0] == "the dont's list in the room"
+
+
 def test_synonyms_plurals_and_open_vocabulary() -> None:
     assert request_labels("couches") == ("sofa",)
     assert request_labels("Fridge") == ("refrigerator",)
@@ -149,3 +157,18 @@ def test_missing_language_model_names_the_install_command(
     monkeypatch.setattr(nlp, "MODEL_PACKAGES", ("no_such_spacy_model",))
     with pytest.raises(nlp.LanguageModelError, match="pip install"):
         nlp._load()
+
+
+def test_language_pipeline_multiplies_with_numpy() -> None:
+    """The loaded pipeline uses numpy's BLAS (faster than blis on request-sized inputs),
+    and loading it leaves the process's default operations as they were."""
+    from thinc.api import get_current_ops
+
+    import inherit_sg.nlp as nlp
+
+    pipeline = nlp.english()
+    for name in ("tok2vec", "tagger", "parser"):
+        assert getattr(pipeline.get_pipe(name).model.ops, "use_blis", True) is False
+    doc = nlp.analyse("put the mug on the shelf above the desk")
+    assert [t.dep_ for t in doc if t.text == "mug"] == ["dobj"]
+    assert getattr(get_current_ops(), "use_blis", True) is True

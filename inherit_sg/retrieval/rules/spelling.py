@@ -109,14 +109,29 @@ def correct_word(word: str) -> str | None:
     return str(best.term)
 
 
+@lru_cache(maxsize=4)
+def _contraction_patterns(table: tuple[tuple[str, str], ...]) -> list[re.Pattern[str]]:
+    """One pattern for the forms of two letters or more (any case) and one for the
+    one-letter forms (lower case only), each form a whole word not followed by an
+    apostrophe; longer forms first, so that "its an" wins over "its a"."""
+    patterns = []
+    for forms, flags in (
+        ([w for w, _ in table if len(w) > 1], re.IGNORECASE),
+        ([w for w, _ in table if len(w) == 1], 0),
+    ):
+        if forms:
+            body = "|".join(re.escape(f) for f in sorted(forms, key=len, reverse=True))
+            patterns.append(re.compile(rf"\b(?:{body})\b(?!')", flags))
+    return patterns
+
+
 def _contractions(text: str) -> str:
     """Restore apostrophes ("thats" → "that's"); one-letter forms ("u") only in lower
     case, so that "U-shaped" stays."""
-    out = text
-    for wrong, right in lexicon().contractions.items():
-        flags = 0 if len(wrong) == 1 else re.IGNORECASE
-        out = re.sub(rf"\b{re.escape(wrong)}\b(?!')", right, out, flags=flags)
-    return out
+    table = lexicon().contractions
+    for pattern in _contraction_patterns(tuple(table.items())):
+        text = pattern.sub(lambda m: table[m.group(0).lower()], text)
+    return text
 
 
 def correct_spelling(text: str) -> tuple[str, list[tuple[str, str]]]:

@@ -64,7 +64,7 @@ class Tok:
 
     def has(self, *tags: str) -> bool:
         """True when the token has any of ``tags``."""
-        return any(t in self.tags for t in tags)
+        return not self.tags.keys().isdisjoint(tags)
 
     def __repr__(self) -> str:
         return f"{self.text}/{'|'.join(self.tags)}"
@@ -146,9 +146,26 @@ def phrase_table() -> tuple[dict[tuple[str, ...], dict[str, Any]], int, frozense
     return t, longest, verbs
 
 
+@lru_cache(maxsize=1)
+def _longest_from() -> dict[str, int]:
+    """First word of a phrase → the most words a phrase opened by it has, so that a
+    lookup tries only the lengths some phrase could fill."""
+    table, _, verbs = phrase_table()
+    out: dict[str, int] = {}
+    for key in (*table, *(tuple(v.split()) for v in verbs)):
+        if key and len(key) > out.get(key[0], 1):
+            out[key[0]] = len(key)
+    return out
+
+
 def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
     table, longest, verbs = phrase_table()
-    for n in range(min(longest, len(words) - i), 0, -1):
+    first = words[i]
+    from_first = _longest_from()
+    reach = from_first.get(first.text, 1)
+    if first.pos in ("VERB", "AUX"):
+        reach = max(reach, from_first.get(first.lemma, 1))
+    for n in range(min(longest, reach, len(words) - i), 0, -1):
         span = words[i : i + n]
         if any(w.text == "," for w in span[1:]):
             continue
