@@ -1,9 +1,11 @@
 """Offline parser on the probe request sets: target agreement, negations and crashes.
 
-The sets in ``bench/data/probe_requests/`` were written here in six styles people use
+The sets in ``bench/data/probe_requests/`` were written here in eight styles people use
 (grounding-dataset descriptions, robot requests, negations and traps that look like
 negations, short speaker-relative utterances, long multi-sentence descriptions,
-house-scale requests with real room names). Each line names the target's head noun
+house-scale requests with real room names, remote embodied instructions in real homes,
+situated / scene / plural references). A parse that runs longer than
+:data:`PARSE_LIMIT_S` counts as a crash (reported as ``HANG``). Each line names the target's head noun
 (``target``, or null where the person names no object) and whether something is ruled
 out (``negated``, where annotated).
 
@@ -13,13 +15,16 @@ who wrote "strip" for "power strip"). A negation is found when any constraint is
 a label is excluded or the request refers to "the other one". The sets were used while
 fixing the parser, so they measure coverage, not held-out accuracy.
 
-    python bench/probe_requests.py [--misses] [--out bench/results/probe_requests.json]
+    python bench/probe_requests.py [--misses] [--sets DIR] [--out bench/results/probe_requests.json]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import signal
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +33,34 @@ from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules import parse_uncached
 
 HERE = Path(__file__).resolve().parent
+# Seconds one parse may take before it counts as a hang (a parse takes milliseconds).
+PARSE_LIMIT_S = 10
+
+
+class _Hang(Exception):
+    """A parse ran past :data:`PARSE_LIMIT_S`."""
+
+
+@contextmanager
+def _time_limit(seconds: int) -> Iterator[None]:
+    """Raise :class:`_Hang` in the main thread when the body runs longer than
+    ``seconds`` (SIGALRM; where there is none, no limit)."""
+    if not hasattr(signal, "SIGALRM"):
+        yield
+        return
+
+    def _raise(signum: int, frame: object) -> None:
+        raise _Hang
+
+    previous = signal.signal(signal.SIGALRM, _raise)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+
+
 SETS = HERE / "data" / "probe_requests"
 
 
@@ -60,7 +93,12 @@ def judge_set(path: Path, misses: bool) -> dict[str, Any]:
         row = json.loads(line)
         n += 1
         try:
-            parsed = parse_uncached(row["text"])
+            with _time_limit(PARSE_LIMIT_S):
+                parsed = parse_uncached(row["text"])
+        except _Hang:
+            crashes += 1
+            print(f"  HANG {row['text']!r}: no parse within {PARSE_LIMIT_S} s")
+            continue
         except Exception as exc:  # a crash is what is counted here
             crashes += 1
             print(f"  CRASH {row['text']!r}: {exc}")
@@ -74,6 +112,8 @@ def judge_set(path: Path, misses: bool) -> dict[str, Any]:
                 neg_found += found
             elif found:
                 invented += 1
+            if misses and found != bool(row["negated"]):
+                print(f"  negation {row['text']!r}: expected {row['negated']}, found {found}")
         if misses and not ok:
             print(f"  target {row['text']!r}: expected {row.get('target')}, "
                   f"parsed {list(parsed.target.labels[:3])}")  # fmt: skip
@@ -91,9 +131,10 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--misses", action="store_true", help="list the targets that disagree")
     ap.add_argument("--out", type=Path, default=HERE / "results" / "probe_requests.json")
+    ap.add_argument("--sets", type=Path, default=SETS, help="folder of *.jsonl probe sets")
     args = ap.parse_args()
     results: dict[str, Any] = {}
-    for path in sorted(SETS.glob("*.jsonl")):
+    for path in sorted(args.sets.glob("*.jsonl")):
         print(f"== {path.stem}")
         row = judge_set(path, args.misses)
         results[path.stem] = row

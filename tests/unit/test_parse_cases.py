@@ -83,6 +83,8 @@ def check(parsed: ParsedQuery, exp: dict[str, Any]) -> None:
     for key, value in simple.items():
         if key in exp:
             assert value == exp[key], f"{key}: {value!r} != {exp[key]!r}"
+    if "negated" in exp:  # whether anything at all is ruled out
+        assert any(c.negated for c in cons) == exp["negated"], cons
     if "labels" in exp:
         assert sorted(t.labels) == sorted(exp["labels"])
     if "labels_include" in exp:

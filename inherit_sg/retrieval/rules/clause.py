@@ -225,6 +225,11 @@ def _related(head: NP, other: NP) -> bool:
     return False
 
 
+# Passes over one token without consuming it before the clause walk skips it (a guard:
+# every reading consumes what it reads, but a missed case must not hang a request).
+_STALL_LIMIT = 4
+
+
 class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
@@ -237,7 +242,14 @@ class ClauseParser(Grammar):
     def parse(self, refine: bool = False, out: Clause | None = None) -> Clause:
         """Walk the tokens once, building the clause (continuing ``out`` when given)."""
         out = out if out is not None else Clause()
+        last, stalled = -1, 0
         while (tok := self.peek()) is not None:
+            stalled = stalled + 1 if self.i == last else 0
+            last = self.i
+            if stalled >= _STALL_LIMIT:  # no branch read this token: never loop on it
+                self.notes.append(f"skipped {tok.text!r} (no reading)")
+                self.advance()
+                continue
             opener = view_opener(self)
             if self._clause_start() and self._counting_origin():
                 continue  # "counting from the curtains, the third chair"
@@ -304,7 +316,8 @@ class ClauseParser(Grammar):
             elif tok.has("super") and out.head is not None:
                 self._attach_postmodifiers(out.head)
             elif out.head is not None and tok.has("with", "without", "have"):
-                self.parse_with(out.head)
+                if not self.parse_with(out.head):
+                    self._unchecked_feature(out.head)
             elif self.np_start():
                 self._noun_phrase(out, refine)
             else:
@@ -312,6 +325,15 @@ class ClauseParser(Grammar):
                     self.notes.append(f"skipped {tok.text!r}")
                 self.advance()
         return out
+
+    def _unchecked_feature(self, head: NP) -> None:
+        """A feature a room cannot be checked for ("the bathroom with the blue tiles"):
+        the phrase is read and left out, so that it neither stalls the clause nor
+        becomes the thing sought."""
+        word = self.advance().text
+        thing = self._with_object()
+        said = thing.noun if thing is not None and thing.noun else "…"
+        self.notes.append(f"'{word} {said}' describes the {head.kind}; not checked")
 
     # ------------------------------------------------------------ clause frames
     def _clause_start(self) -> bool:
@@ -354,7 +376,12 @@ class ClauseParser(Grammar):
         if tok.lemma in _SWITCH_VERBS and self.text_at() in ("on", "off"):
             self.advance()  # "turn on the lamp"
         while (nxt := self.peek()) is not None and (nxt.text in _TOWARDS or nxt.tag == "RP"):
-            if nxt.has("prep") and nxt.text not in ("to", "towards", "toward", "at", "over to"):
+            particle = nxt.tag == "RP" and self.np_start(1)  # "push in the chair"
+            if (
+                nxt.has("prep")
+                and nxt.text not in ("to", "towards", "toward", "at", "over to")
+                and not particle
+            ):
                 break
             self.advance()
         nxt = self.peek()

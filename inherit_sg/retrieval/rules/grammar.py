@@ -351,6 +351,8 @@ class Grammar(Cursor):
         labels = object_vocab.labels_for(place)
         if not labels or set(labels) & set(np.labels):
             return
+        if predicate == "on" and any("furniture" in object_vocab.is_a(k) for k in np.labels):
+            return  # "the sofa chair" is an armchair, not a chair on a sofa
         np.constraints.append(
             RelationConstraint(
                 predicate=predicate,
@@ -426,6 +428,7 @@ class Grammar(Cursor):
     def _postmodifiers(self, np: NP, landmark: bool) -> None:
         after_be = False
         while (tok := self.peek()) is not None:
+            at = self.i
             if tok.text.split()[0] in VIEW_OPENERS and (tok.has("view") or self.at("seeker", k=1)):
                 break  # "the left one if you're facing the headboard": a viewpoint
             bare = np.kind == ONE and not np.labels  # "it is long and made of wood"
@@ -472,9 +475,35 @@ class Grammar(Cursor):
                 pass  # "the area would be best for …"
             elif not self._postmodifier(np, tok, landmark, after_be):
                 break
+            elif self.i == at:
+                break  # a reading that consumed nothing: stop rather than loop
             else:
                 continue
             self.advance()
+
+    def _material_phrase(self, np: NP) -> bool:
+        """ "covered in grey fabric", "a sofa in black leather", "upholstered with velvet":
+        after "in" / "with", colour and material words that end on a material and head
+        no noun describe the thing itself, not a landmark."""
+        k = 2 if self.at("det", k=1) and not self.at("noun", "unk", k=1) else 1
+        words: list[Tok] = []
+        while (t := self.peek(k + len(words))) is not None and t.has("colour", "material", "adj"):
+            if t.has("noun", "unk") and not t.has("material"):
+                return False
+            words.append(t)
+        if not words or not words[-1].has("material"):
+            return False
+        after = self.peek(k + len(words))
+        if after is not None and (after.has("noun", "unk") or after.pos in ("NOUN", "PROPN")):
+            return False  # "in the wooden box": a landmark made of wood
+        if words[-1].has("noun") and after is not None and not after.has("comma", "and", "or"):
+            return False  # "with a glass of water on it": the glass is a thing
+        for _ in range(k):
+            self.advance()
+        for t in words:
+            self.advance()
+            self._attribute(np, t)
+        return True
 
     def _relation_verb(self, k: int) -> bool:
         """Whether token ``k`` ahead is a verb whose object places the thing that does
@@ -522,6 +551,8 @@ class Grammar(Cursor):
         if tok.has("prep") and tok.text == "in" and self._middle_here(np):
             return True
         if self._middle_of_group(np, tok):
+            return True
+        if tok.text in ("in", "with") and self._material_phrase(np):
             return True
         if tok.has("prep", "away"):
             snap = self.state()
@@ -741,7 +772,8 @@ class Grammar(Cursor):
     def _doing_word(self, np: NP, tok: Tok) -> bool:
         """After "that (doesn't)" / "that is (not)": a verb with no object says what the
         thing does or is doing ("that doesn't wobble", "isn't charging"), a state."""
-        if tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP"):
+        phrasal = self._neg and tok.has("fverb") and " " in tok.text  # "isn't plugged in"
+        if not phrasal and (tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP", "VBN")):
             return False
         if tok.has("prep", "noun", "be", "have", "placement", "view"):
             return False
@@ -750,15 +782,24 @@ class Grammar(Cursor):
         before = self.peek(-1)
         if before is not None and before.has("modal") and before.text.split()[0] not in _DO:
             return False  # "something that could help": what it can do, no state
-        after = self.peek(1)
+        # "that isn't plugged in", "not hanging up": the verb's particle belongs to it
+        particle = self.peek(1)
+        k = 2 if self._neg and particle is not None and particle.tag == "RP" else 1
+        if tok.tag == "VBN" and k == 1 and not phrasal:
+            return False  # a participle alone is an adjective's business ("cracked")
+        after = self.peek(k)
         if after is not None and not after.has("comma", "and", "but", "or", "sub", "rel"):
             return False  # "that holds the TV", "that sits by …": more than a state
-        self.advance()
+        words = [t.text for t in self.toks[self.i : self.i + k]]
+        for _ in range(k):
+            self.advance()
+        value = tok.text if tok.tag in ("VBG", "VBN") or phrasal else (tok.lemma or tok.text)
+        if k == 2 and words[1] in ("on", "off"):
+            value, words = words[1], words[1:]  # "not turned on": the state "on"
         np.constraints.append(
             AttributeConstraint(
-                key="state", value=tok.text if tok.tag == "VBG" else (tok.lemma or tok.text),
-                negated=self.take_neg(),
-                weight=self.weight("attribute"), text=tok.text,
+                key="state", value=" ".join([value, *words[1:]]), negated=self.take_neg(),
+                weight=self.weight("attribute"), text=" ".join(words),
             )
         )  # fmt: skip
         return True

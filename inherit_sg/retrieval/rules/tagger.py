@@ -456,12 +456,34 @@ def tag(words: list[Word]) -> list[Tok]:
             after_det = i > 0 and words[i - 1].pos == "DET"
             if n == 1 and tok.has("away", "prep") and after_det and words[i].pos == "ADJ":
                 tok.tags = {"adj": ("other", words[i].text)}  # "the outside tap": a kind
+            of_after = i + 1 < len(words) and words[i + 1].text == "of"
+            if n == 1 and tok.has("filler") and after_det and of_after and words[i].pos == "NOUN":
+                del tok.tags["filler"]  # "at the head of the table": a noun, not "head to"
             if tok.has("except"):
                 for key in ("seek", "overb", "fverb"):  # "avoid the living room": not X
                     tok.tags.pop(key, None)
             out.append(tok)
             i += n
         else:
-            out.append(_single(words[i], first))
+            tok = _single(words[i], first)
+            if first and _verb_before_object(words, i) and tok.has("unk"):
+                # "… and dust the bookcase": spaCy's noun is the command's verb
+                tok.tags = {"overb": words[i].text, "seek": words[i].text}
+                tok.pos, tok.tag = "VERB", "VB"
+            out.append(tok)
             i += 1
     return out
+
+
+# Determiners that open a command's object right after its verb ("dust the bookcase").
+_OBJECT_DETERMINERS = frozenset({"the", "a", "an", "this", "that", "these", "those", "my", "your"})
+
+
+def _verb_before_object(words: list[Word], i: int) -> bool:
+    """Whether the clause-opening word ``i``, a singular noun by spaCy that no vocabulary
+    knows, is the verb of a command whose object follows at once ("go to the library and
+    dust the bookcase", "mop the hallway floor"): a word at the head of its clause (its
+    own root or a conjunct) followed by a determiner and then more words."""
+    if i + 2 >= len(words) or words[i].tag not in ("NN", "VB", "VBP"):
+        return False
+    return words[i].dep in ("ROOT", "conj") and words[i + 1].text in _OBJECT_DETERMINERS

@@ -184,7 +184,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         and obj is not None
         and obj.kind == OBJECT
         and obj.known
-        and not has_own_sense(verb, words, lemmas)
+        and not has_own_sense(verb, words[:own], lemmas[:own])
     ):
         # "find a laptop in the work area": a named thing, not a purpose ("laptop" → work);
         # but "take a shower" is the verb's own sense (wash)
