@@ -168,6 +168,16 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
+    going = _destination_relation(obj) if tok.lemma in _PLACING_VERBS and named else None
+    if going is not None and obj is not None:
+        # "put the DVD on the top shelf", "hang the coat on the hook": the thing to move
+        # is sought; where it goes says nothing about where it is now
+        obj.constraints = [c for c in obj.constraints if c is not going]
+        g.notes.append(
+            f"'{tok.text} {obj.noun} … {going.landmark.target.noun}': the thing moved is "
+            "the target, not where it goes"
+        )
+        return [], obj
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
     if destination is not None:
         # "put this in the recycling bin by the back door": where it goes is the target
@@ -211,11 +221,14 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     return [made, *where, *places, *_done_from(g)], head
 
 
-def _destination(obj: NP | None) -> NP | None:
-    """The named thing a placing verb's object goes in or on ("put this in the bin"), as a
-    phrase of its own with its own modifiers; None when there is none."""
+def _destination_relation(obj: NP | None) -> RelationConstraint | None:
+    """The relation saying where a placing verb's object goes ("put this in the bin",
+    "put the DVD on the top shelf"): the last named "in" / "on" of the object, since the
+    verb's own phrase follows what the object's modifiers say ("the cue that's lying on
+    the table back in the rack")."""
     if obj is None:
         return None
+    found = None
     for con in obj.constraints:
         if (
             isinstance(con, RelationConstraint)
@@ -224,15 +237,24 @@ def _destination(obj: NP | None) -> NP | None:
             and con.landmark.target.labels
             and con.landmark.target.noun
         ):
-            lm = con.landmark
-            return NP(
-                kind=OBJECT,
-                labels=list(lm.target.labels),
-                words=lm.target.noun.split(),
-                constraints=list(lm.constraints),
-                known=True,
-            )
-    return None
+            found = con
+    return found
+
+
+def _destination(obj: NP | None) -> NP | None:
+    """The named thing a placing verb's object goes in or on, as a phrase of its own with
+    its own modifiers; None when there is none."""
+    con = _destination_relation(obj)
+    if con is None:
+        return None
+    lm = con.landmark
+    return NP(
+        kind=OBJECT,
+        labels=list(lm.target.labels),
+        words=lm.target.noun.split(),
+        constraints=list(lm.constraints),
+        known=True,
+    )
 
 
 def _places_target(con: Constraint, obj: NP) -> bool:
