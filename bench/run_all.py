@@ -188,6 +188,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
         name: json.loads(path.read_text(encoding="utf-8"))
         for name, path in (
             ("parse", PARSE_JSON),
+            ("probe", RESULTS.parent / "probe_requests.json"),
             ("mp3d", MP3D_REQUESTS_JSON),
             ("mp3d_independent", MP3D_INDEPENDENT_JSON),
             ("mp3d_third", MP3D_THIRD_JSON),
@@ -208,10 +209,12 @@ def render(docs: list[dict[str, Any]]) -> Path:
 
 
 def run_request_sets(work: Path) -> None:
-    """The parser's development set and the three MP3D human-written request sets (each script
-    writes its JSON under bench/results/)."""
+    """The parser's development set and probe sets, and the three MP3D human-written
+    request sets (each script writes its JSON under bench/results/)."""
     print("== request parsing (bench/parse.py --dev)", flush=True)
     subprocess.run([sys.executable, str(ROOT / "bench" / "parse.py"), "--dev"], check=True)
+    print("== probe request sets (bench/probe_requests.py)", flush=True)
+    subprocess.run([sys.executable, str(ROOT / "bench" / "probe_requests.py")], check=True)
     if MP3D_HOUSE.is_file():
         print("== MP3D human-written requests (bench/mp3d_requests.py)", flush=True)
         script = ROOT / "bench" / "mp3d_requests.py"

@@ -115,6 +115,14 @@ def render_page(
             "(`python bench/parse.py --dev`). Latency without the result cache.",
             request_sets_section.parse_section(sets["parse"]),
         ]
+    if "probe" in sets:
+        parts += [
+            "Probe sets (`bench/data/probe_requests/`, `python bench/probe_requests.py`): "
+            "requests in eight further styles, each written by a separate author; the "
+            "parser was fixed against them, so they measure coverage. A parse running "
+            "past 10 s counts as a crash.",
+            request_sets_section.probe_section(sets["probe"]),
+        ]
     if "mp3d" in sets:
         parts += [
             "## Human-written requests on the Matterport3D house",

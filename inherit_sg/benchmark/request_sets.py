@@ -48,6 +48,21 @@ def parse_section(doc: dict[str, Any]) -> str:
     return "\n\n".join(parts)
 
 
+def probe_section(doc: dict[str, Any]) -> str:
+    """Parser coverage on the probe sets (``bench/probe_requests.py``): a row per set."""
+    header = ["probe set", "requests", "targets agree %", "negations found", "invented", "crashes"]
+    rows = []
+    for name, row in doc.items():
+        recall = row.get("negation_recall")
+        found = f"{ratio_pct(recall)} of {row['negations_expected']}" if recall is not None else "–"
+        invented = str(row["negations_invented"]) if recall is not None else "–"
+        rows.append(
+            [name, str(row["requests"]), ratio_pct(row["targets_agree"]), found, invented,
+             str(row["crashes"])]
+        )  # fmt: skip
+    return table(header, rows)
+
+
 def requests_section(doc: dict[str, Any]) -> str:
     """Accuracy per request form on the MP3D house (a row per form and overall)."""
     totals = doc.get("totals", {})

@@ -46,3 +46,17 @@ def test_stage_latency_skips_untimed_stages_and_empty_input() -> None:
     assert list(lat) == ["total"]
     assert stage_latency([]) == {}
     assert math.isnan(mean_total_ms([]))
+
+
+def test_probe_sets_render_a_row_per_set() -> None:
+    from inherit_sg.benchmark.page import render_page
+
+    doc = {
+        "reverie_style": {"requests": 200, "targets_agree": 0.96, "negations_expected": 16,
+                          "negation_recall": 1.0, "negations_invented": 0, "crashes": 0},
+        "speaker_relative": {"requests": 200, "targets_agree": 1.0, "negations_expected": 0,
+                             "negation_recall": None, "negations_invented": 0, "crashes": 2},
+    }  # fmt: skip
+    page = render_page([], None, {}, request_sets={"probe": doc})
+    assert "| reverie_style | 200 | 96.0 | 100.0 of 16 | 0 | 0 |" in page
+    assert "| speaker_relative | 200 | 100.0 | – | – | 2 |" in page

@@ -172,3 +172,17 @@ def test_language_pipeline_multiplies_with_numpy() -> None:
     doc = nlp.analyse("put the mug on the shelf above the desk")
     assert [t.dep_ for t in doc if t.text == "mug"] == ["dobj"]
     assert getattr(get_current_ops(), "use_blis", True) is True
+
+
+def test_where_the_speaker_stands_is_a_viewpoint() -> None:
+    """An opening "from X" with no comma, and a first sentence that places the speaker
+    before a question about another thing, both give a viewpoint, not the target."""
+    shelf = parse_rules("from the door the third shelf")
+    assert shelf.target.labels == ("shelf",)
+    assert shelf.viewpoint is not None and shelf.viewpoint.kind == "from"
+    assert shelf.viewpoint.landmark.target.labels == ("door",)
+    asked = parse_rules(
+        "I am sitting on the sofa and the TV is in front of me. Is the lamp behind me?"
+    )
+    assert asked.target.labels == ("lamp",)
+    assert asked.viewpoint is not None and asked.viewpoint.landmark.target.labels == ("sofa",)

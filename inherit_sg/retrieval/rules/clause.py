@@ -228,6 +228,8 @@ def _related(head: NP, other: NP) -> bool:
 # Passes over one token without consuming it before the clause walk skips it (a guard:
 # every reading consumes what it reads, but a missed case must not hang a request).
 _STALL_LIMIT = 4
+# Determiners that open the thing sought after an opening "from the door" with no comma.
+_OPENING_DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 
 
 class ClauseParser(Grammar):
@@ -601,11 +603,15 @@ class ClauseParser(Grammar):
         return None
 
     def _from_clause(self, k: int) -> bool:
-        """ "from the door, …" opens a viewpoint only at the start and before a comma."""
+        """ "from the door, …" opens a viewpoint only at the start and before a comma, or
+        before a second determiner that opens the thing sought ("from the door the third
+        shelf")."""
         if k or self.i > 0:
             return False
         j = 1
         while (t := self.peek(j)) is not None and not t.has("comma"):
+            if j >= 3 and t.text in _OPENING_DETERMINERS and self.at("det", k=j - 2):
+                return j <= 7
             j += 1
         return self.peek(j) is not None and j <= 7
 

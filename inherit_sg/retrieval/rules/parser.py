@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import lru_cache
 
+from inherit_sg.retrieval.constraints import Viewpoint
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
@@ -184,6 +185,26 @@ def _merge_sentence(
     notes.append(f"sentence about {other.noun or other.kind!r} (not the target) ignored")
 
 
+def _speaker_situation(sentence: list[Word]) -> bool:
+    """Whether a sentence says where the speaker is ("I'm sitting on the edge of the bed
+    facing the window", "I am at the counter"): "I" / "we", then within three words a
+    verb of standing or facing, or "am" / "are" and a preposition."""
+    words = sentence[:5]
+    if len(words) < 3 or words[0].text not in ("i", "we"):
+        return False
+    lx = lexicon()
+    if words[1].lemma == "be" and words[2].pos == "ADP":
+        return True
+    return any(w.lemma in lx.viewpoint_verbs or w.lemma in lx.facing_verbs for w in words[1:4])
+
+
+def _asks_for_object(more: Clause) -> bool:
+    """Whether a later sentence asks for a named object of its own ("Which chair is
+    closest to my right hand?", "Is the radiator behind me?")."""
+    head = more.head
+    return head is not None and head.kind == OBJECT and bool(head.labels) and not more.head_negated
+
+
 def _about_target(head: NP, other: NP, notes: list[str]) -> bool:
     """A later sentence about another thing placed by "it" ("There are books on it"):
     the relation, turned round, describes the target."""
@@ -224,9 +245,11 @@ def parse_uncached(text: str) -> ParsedQuery:
     if refine:
         notes.append("frame: refinement of the previous request")
     clause = Clause()
+    situation = False
     for n, sentence in enumerate(sentences):
         tokens = tag(sentence)
         if clause.head is None:
+            situation = _speaker_situation(sentence)
             opening = ClauseParser(tokens, notes)
             opening.more_sentences = n + 1 < len(sentences)
             opening.parse(refine, clause)
@@ -237,6 +260,18 @@ def parse_uncached(text: str) -> ParsedQuery:
         later = ClauseParser(tokens, notes)
         later.later = True
         more = later.parse(refine)
+        if situation and _asks_for_object(more) and clause.head.kind == OBJECT:
+            # "I'm sitting on the sofa and the bookshelf is in front of me. Is the
+            # radiator behind me?": the first sentence places the speaker
+            assert more.head is not None
+            notes.append(f"the first sentence places the speaker; {more.head.noun!r} is sought")
+            if more.viewpoint is None:
+                more.viewpoint = clause.viewpoint or Viewpoint(
+                    kind="from", landmark=clause.head.landmark(), text=clause.head.noun
+                )
+            clause, situation = more, False
+            continue
+        situation = False
         if correcting and more.head is not None and more.head.kind == OBJECT:
             notes.append(f"'{more.head.noun}' corrects the earlier request")
             if clause.head is not None and clause.head_negated and clause.head.labels:
