@@ -265,7 +265,10 @@ class ClauseParser(Grammar):
                 self._request_verb()
             elif verbs.is_verb_here(self):
                 verb_at = self.i
+                keep_out = self._neg and verbs.kept_out(tok)
                 made, candidate = verbs.parse_vp(self)
+                if keep_out:
+                    made, candidate = self._kept_out(made, candidate)
                 out.functions += [c for c in made if c.kind == "function"]
                 self._route(out, [c for c in made if c.kind != "function"])
                 if candidate is not None:
@@ -327,6 +330,25 @@ class ClauseParser(Grammar):
                     self.notes.append(f"skipped {tok.text!r}")
                 self.advance()
         return out
+
+    def _kept_out(
+        self, made: list[Constraint], candidate: NP | None
+    ) -> tuple[list[Constraint], NP | None]:
+        """ "don't go into the garage", "Don't go in the garage, go to the mudroom": the
+        rooms a negated verb of going names are ruled out, and none of them is sought."""
+        made = [replace(c, negated=True) if isinstance(c, RoomConstraint) else c for c in made]
+        if candidate is None:
+            if not made and self.at("prep") and (self.at("room", k=1) or self.at("room", k=2)):
+                self.negate()  # "don't go into the garage": the place phrase that follows
+            return made, None
+        candidate.places = [
+            replace(c, negated=True) if isinstance(c, RoomConstraint) else c
+            for c in candidate.places
+        ]
+        if candidate.kind == ROOM:
+            self.notes.append(f"'not … {candidate.noun}': that room is ruled out")
+            return [*made, self._place(candidate, True), *candidate.places], None
+        return made, candidate
 
     def _unchecked_feature(self, head: NP) -> None:
         """A feature a room cannot be checked for ("the bathroom with the blue tiles"):

@@ -103,6 +103,12 @@ def _open_verb_here(g: Grammar, tok: Tok) -> bool:
     return opener is None or opener.text == "where"
 
 
+def kept_out(tok: Tok) -> bool:
+    """Whether ``tok`` is a verb of going somewhere, whose negation keeps the speaker out
+    of the place that follows ("don't go into the garage")."""
+    return tok.lemma in lexicon().viewpoint_verbs
+
+
 def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | None]:
     """Parse a verb phrase at the cursor → function constraints and a head candidate.
 
@@ -113,7 +119,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     tok = g.advance()
     verb = verb_reading(tok) or tok.text
     refused = g.take_neg()
-    if refused and tok.lemma not in _CHOICE_VERBS:
+    if refused and tok.lemma not in _CHOICE_VERBS and not kept_out(tok):
         g.notes.append(f"negation before verb {tok.text!r} ignored")
     stress = g.take_stress()
     while g.at("adv") and not g.at("prep"):
