@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import lru_cache
 
-from inherit_sg.retrieval.constraints import Viewpoint
+from inherit_sg.retrieval.constraints import AttributeConstraint, Viewpoint
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
@@ -51,10 +51,46 @@ def _flat(sentences: list[list[Word]]) -> list[Word]:
 
 
 def _corrects(sentence: list[Word]) -> bool:
-    """Whether a sentence opens by correcting the one before ("no wait, I mean …")."""
+    """Whether a sentence opens by correcting the one before ("no wait, I mean …", "no,
+    the yellow one")."""
     words = [w.text for w in sentence[:5] if w.text != ","]
     text = " ".join(words)
-    return any(text.startswith(c) or text.startswith(f"no {c}") for c in lexicon().corrections)
+    if any(text.startswith(c) or text.startswith(f"no {c}") for c in lexicon().corrections):
+        return True
+    after = [w for w in sentence[1:4] if w.text != ","]
+    said_no = bool(sentence) and sentence[0].text == "no" and len(sentence) > 1
+    return (
+        said_no and sentence[1] is COMMA and bool(after)
+        and (after[0].pos == "DET" or after[0].text == "not")
+    )  # fmt: skip
+
+
+def _corrects_details(clause: Clause, more: Clause) -> bool:
+    """Fold a correction that names no kind ("…, no wait, the blue one") into the earlier
+    head: its attributes replace those of the same key, its places the earlier places.
+    False (nothing changed) when the correction names a thing of its own."""
+    head, one = clause.head, more.head
+    if head is None or one is None or one.kind != ONE or head.kind != OBJECT:
+        return False
+    if clause.head_negated or head.plural or head.quantity:
+        return False  # "Not the big TV, I mean the little one"; "three beds, I mean the middle one"
+    keys = {c.key for c in one.constraints if isinstance(c, AttributeConstraint)}
+    kept = [
+        c for c in head.constraints if not (isinstance(c, AttributeConstraint) and c.key in keys)
+    ]
+    head.constraints = [*kept, *one.constraints]
+    if more.places or one.places:
+        clause.places = [*more.places, *one.places]
+    return True
+
+
+def _split_correction(sentence: list[Word]) -> list[list[Word]]:
+    """A sentence that corrects itself after a comma ("the red mug, no wait, the blue
+    one", "the orange… no, the yellow bucket") as two sentences, the second a correction."""
+    for j in range(2, len(sentence) - 1):
+        if sentence[j - 1] is COMMA and _corrects(sentence[j:]):
+            return [sentence[: j - 1], sentence[j:]]
+    return [sentence]
 
 
 _CORRECTION_WORDS = frozenset(
@@ -244,6 +280,7 @@ def parse_uncached(text: str) -> ParsedQuery:
         sentences = [first, *sentences[1:]] if first else sentences[1:]
     if refine:
         notes.append("frame: refinement of the previous request")
+    sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     clause = Clause()
     situation = False
     for n, sentence in enumerate(sentences):
@@ -272,6 +309,9 @@ def parse_uncached(text: str) -> ParsedQuery:
             clause, situation = more, False
             continue
         situation = False
+        if correcting and _corrects_details(clause, more):
+            notes.append("the correction changes the earlier request's details")
+            continue
         if correcting and more.head is not None and more.head.kind == OBJECT:
             notes.append(f"'{more.head.noun}' corrects the earlier request")
             if clause.head is not None and clause.head_negated and clause.head.labels:
