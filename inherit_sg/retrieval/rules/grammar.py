@@ -785,7 +785,7 @@ class Grammar(Cursor):
         # "that isn't plugged in", "not hanging up": the verb's particle belongs to it
         particle = self.peek(1)
         k = 2 if self._neg and particle is not None and particle.tag == "RP" else 1
-        if tok.tag == "VBN" and k == 1 and not phrasal:
+        if tok.tag == "VBN" and k == 1 and not phrasal and (not self._neg or tok.has("adj")):
             return False  # a participle alone is an adjective's business ("cracked")
         after = self.peek(k)
         if after is not None and not after.has("comma", "and", "but", "or", "sub", "rel"):
@@ -1142,6 +1142,8 @@ class Grammar(Cursor):
             neg = not neg
         lm = self._with_object()
         if lm is None:
+            if neg:
+                self.negate()  # "that hasn't been watered": for what follows
             return True
         if np.kind in (ROOM, AREA, GENERIC_AREA) and self._is_part(np, lm):
             self.restore(snap)
