@@ -232,6 +232,11 @@ _STALL_LIMIT = 4
 _OPENING_DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 
 
+def _rooms_ruled_out(cons: list[Constraint]) -> list[Constraint]:
+    """``cons`` with every room constraint negated."""
+    return [replace(c, negated=True) if isinstance(c, RoomConstraint) else c for c in cons]
+
+
 class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
@@ -336,15 +341,12 @@ class ClauseParser(Grammar):
     ) -> tuple[list[Constraint], NP | None]:
         """ "don't go into the garage", "Don't go in the garage, go to the mudroom": the
         rooms a negated verb of going names are ruled out, and none of them is sought."""
-        made = [replace(c, negated=True) if isinstance(c, RoomConstraint) else c for c in made]
+        made = _rooms_ruled_out(made)
         if candidate is None:
             if not made and self.at("prep") and (self.at("room", k=1) or self.at("room", k=2)):
                 self.negate()  # "don't go into the garage": the place phrase that follows
             return made, None
-        candidate.places = [
-            replace(c, negated=True) if isinstance(c, RoomConstraint) else c
-            for c in candidate.places
-        ]
+        candidate.places = _rooms_ruled_out(candidate.places)
         if candidate.kind == ROOM:
             self.notes.append(f"'not … {candidate.noun}': that room is ruled out")
             return [*made, self._place(candidate, True), *candidate.places], None

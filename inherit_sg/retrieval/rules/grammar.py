@@ -790,16 +790,16 @@ class Grammar(Cursor):
         after = self.peek(k)
         if after is not None and not after.has("comma", "and", "but", "or", "sub", "rel"):
             return False  # "that holds the TV", "that sits by …": more than a state
-        words = [t.text for t in self.toks[self.i : self.i + k]]
-        for _ in range(k):
-            self.advance()
-        value = tok.text if tok.tag in ("VBG", "VBN") or phrasal else (tok.lemma or tok.text)
+        words = [self.advance().text for _ in range(k)]
+        verb = tok.text if tok.tag in ("VBG", "VBN") or phrasal else (tok.lemma or tok.text)
         if k == 2 and words[1] in ("on", "off"):
-            value, words = words[1], words[1:]  # "not turned on": the state "on"
+            value = text = words[1]  # "not turned on": the state "on"
+        else:
+            value, text = " ".join([verb, *words[1:]]), " ".join(words)
         np.constraints.append(
             AttributeConstraint(
-                key="state", value=" ".join([value, *words[1:]]), negated=self.take_neg(),
-                weight=self.weight("attribute"), text=" ".join(words),
+                key="state", value=value, negated=self.take_neg(),
+                weight=self.weight("attribute"), text=text,
             )
         )  # fmt: skip
         return True

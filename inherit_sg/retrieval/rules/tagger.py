@@ -480,10 +480,10 @@ _OBJECT_DETERMINERS = frozenset({"the", "a", "an", "this", "that", "these", "tho
 
 
 def _verb_before_object(words: list[Word], i: int) -> bool:
-    """Whether the clause-opening word ``i``, a singular noun by spaCy that no vocabulary
-    knows, is the verb of a command whose object follows at once ("go to the library and
-    dust the bookcase", "mop the hallway floor"): a word at the head of its clause (its
-    own root or a conjunct) followed by a determiner and then more words."""
+    """Whether the clause-opening word ``i`` (tagged NN, VB or VBP by spaCy; the caller
+    checks that no vocabulary knows it) is the verb of a command whose object follows at
+    once ("go to the library and dust the bookcase"): a word at the head of its clause
+    (its own root or a conjunct) followed by a determiner and then more words."""
     if i + 2 >= len(words) or words[i].tag not in ("NN", "VB", "VBP"):
         return False
     return words[i].dep in ("ROOT", "conj") and words[i + 1].text in _OBJECT_DETERMINERS
