@@ -90,6 +90,8 @@ class Lexicon:
     prepositions: dict[str, str]
     away_prepositions: frozenset[str]
     outside_prepositions: frozenset[str]
+    # things "outside X" is beside, not out of: "the chair outside the sliding door"
+    openings: frozenset[str]
     with_inverse: dict[str, str]
     relation_verbs: dict[str, str]
     superlatives: dict[str, str]
@@ -195,6 +197,7 @@ def lexicon() -> Lexicon:
         prepositions=_str_map(_section(rel, "prepositions"), "relations.prepositions"),
         away_prepositions=frozenset(_list(_section(rel, "negating"), "away", where)),
         outside_prepositions=frozenset(_list(_section(rel, "negating"), "outside", where)),
+        openings=frozenset(_list(_section(rel, "negating"), "openings", where)),
         with_inverse=_str_map(_section(rel, "with_inverse"), "relations.with_inverse"),
         relation_verbs=_predicate_map(_section(rel, "verbs"), "relations.verbs"),
         superlatives=_str_map(_section(rank, "superlatives"), "ranking.superlatives"),

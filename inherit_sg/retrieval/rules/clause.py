@@ -76,6 +76,9 @@ _BESIDE = frozenset({"next to", "by", "near", "beside", "at", "in front of", "cl
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
+# Last words of a viewpoint phrase that needs no landmark ("when you walk in", "as you
+# come up"), so that a thing and "is" after it open the main clause.
+_COMPLETE_VIEW_ENDS = frozenset({"in", "inside", "enter", "up", "down", "around", "round", "out"})
 # "before I head out …": a time clause, context rather than the target.
 _TIME_WORDS = frozenset({"before", "after", "once", "until"})
 _PEOPLE = frozenset({"i", "we", "you", "they", "he", "she"})
@@ -463,15 +466,21 @@ class ClauseParser(Grammar):
             return False
         snap = self.state()
         self.i += k + 1
+        linked = False
         while (tok := self.peek()) is not None and (
             tok.has("prep", "to", "from") or tok.tag == "RP" or tok.text in _PARTICLES
         ):
             if tok.text in ("to", "toward", "towards") and kind == "from":
                 kind = "facing"  # "as you walk towards the window"
             self.advance()  # "as you come in through the door", "stand at the sink"
+            linked = True
             if self.np_start():
                 break
-        lm = self.parse_np(landmark=True) if self.np_start() else None
+        complete = cue.text.split()[-1] in _COMPLETE_VIEW_ENDS
+        if not linked and complete and cue.has("view") and self._subject_follows():
+            lm = None  # "when you walk in the bookshelf is straight ahead": the main clause
+        else:
+            lm = self.parse_np(landmark=True) if self.np_start() else None
         if lm is not None and lm.kind == VAGUE:
             lm = self._position_landmark(lm)  # "from the top of the stairs"
         if lm is not None and lm.kind not in (OBJECT, ROOM):
@@ -510,6 +519,14 @@ class ClauseParser(Grammar):
             self.advance()
         self.view_end = self.i
         return True
+
+    def _subject_follows(self) -> bool:
+        """Whether the words here are a thing and its verb "be" ("the bookshelf is …",
+        "the two chairs are …"): the subject of a clause, no landmark."""
+        k = 0
+        while self.at("det", "num", "colour", "material", "adj", k=k):
+            k += 1
+        return self.at("noun", "unk", k=k) and self.at("be", k=k + 1)
 
     def _time_clause(self, out: Clause) -> bool:
         """ "before I head out the front door", "after we get to the kitchen": when the

@@ -84,6 +84,16 @@ def _leads_somewhere(np: NP) -> bool:
     )
 
 
+def _opening(np: NP) -> bool:
+    """Whether a phrase names a door, window or the like (``openings`` in the lexicon),
+    which a thing is "outside" of by standing beside it."""
+    openings = lexicon().openings
+    return np.kind == OBJECT and any(
+        label in openings or any(object_vocab.is_kind_of(label, o) for o in openings)
+        for label in np.labels
+    )
+
+
 def _room_in_compound(head: Tok) -> tuple[str, str] | None:
     """The room a compound the vocabulary knows names before its kind ("kitchen sink" is a
     sink, "bathroom scale" a scale): (room type, room word). None when the kind keeps the
@@ -788,7 +798,10 @@ class Grammar(Cursor):
         if tok.tag == "VBN" and k == 1 and not phrasal and (not self._neg or tok.has("adj")):
             return False  # a participle alone is an adjective's business ("cracked")
         after = self.peek(k)
-        if after is not None and not after.has("comma", "and", "but", "or", "sub", "rel"):
+        ends: tuple[str, ...] = ("comma", "and", "but", "or", "sub", "rel")
+        if phrasal:
+            ends = (*ends, "prep", "placement")  # "that isn't plugged in by the bed"
+        if after is not None and not after.has(*ends):
             return False  # "that holds the TV", "that sits by …": more than a state
         words = [self.advance().text for _ in range(k)]
         verb = tok.text if tok.tag in ("VBG", "VBN") or phrasal else (tok.lemma or tok.text)
@@ -1049,6 +1062,8 @@ class Grammar(Cursor):
         if lm is None:
             return None
         lm = self._side_of(lm)
+        if predicate == "inside" and tok.text in lexicon().outside_prepositions and _opening(lm):
+            predicate, neg = "near", not neg  # "the patio chair outside the sliding door"
         text = f"{tok.text} {lm.noun or lm.kind}"
         places = lm.places
         if lm.kind == FLOOR and lm.floor is not None:
@@ -1136,6 +1151,8 @@ class Grammar(Cursor):
         room without arms" is about the chair."""
         snap = self.state()
         tok = self.advance()
+        if self._empty_of_things():
+            return True
         neg = self.take_neg() != tok.has("without")
         if self.at("neg"):
             self.advance()
@@ -1166,6 +1183,19 @@ class Grammar(Cursor):
                 self._with_constraint(np, thing, neg, tok.text, predicate, after if on_it else None)
             )
             np.places += thing.places
+        return True
+
+    def _empty_of_things(self) -> bool:
+        """ "with nothing (else) on it": the thing is bare, which the map does not record;
+        read and set aside with a note (no negated relation to the thing itself)."""
+        k = 2 if self.text_at(1) == "else" else 1
+        if self.text_at() != "nothing" or not (
+            self.at("prep", k=k) and self.at("anaphor", k=k + 1)
+        ):
+            return False
+        said = " ".join(t.text for t in self.toks[self.i : self.i + k + 2])
+        self.i += k + 2
+        self.notes.append(f"'with {said}': an empty surface is not checked")
         return True
 
     def _with_object(self) -> NP | None:

@@ -14,7 +14,12 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import lru_cache
 
-from inherit_sg.retrieval.constraints import AttributeConstraint, Viewpoint
+from inherit_sg.retrieval.constraints import (
+    AttributeConstraint,
+    Constraint,
+    RelationConstraint,
+    Viewpoint,
+)
 from inherit_sg.retrieval.query import ParsedQuery
 from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
@@ -34,7 +39,8 @@ from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
 from inherit_sg.vocab.lexicon import lexicon
-from inherit_sg.vocab.objects import is_kind_of
+from inherit_sg.vocab.objects import canonical_label, is_kind_of
+from inherit_sg.vocab.rooms import room_type
 
 _VAGUE_HEADS = (GENERIC, GENERIC_AREA, VAGUE)
 # Sentences parsed per request (longer texts are talk around the request).
@@ -82,6 +88,37 @@ def _corrects_details(clause: Clause, more: Clause) -> bool:
     if more.places or one.places:
         clause.places = [*more.places, *one.places]
     return True
+
+
+def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
+    """A statement run on into a request with no stop between them ("the wifi is down
+    can you check the router", as speech is transcribed) as two sentences: split before
+    "can / could / would / will you" where a finite verb came before."""
+    for j in range(2, len(sentence) - 2):
+        word = sentence[j]
+        if word.tag != "MD" or sentence[j + 1].text != "you" or sentence[j - 1] is COMMA:
+            continue
+        before = sentence[:j]
+        if before[0].text in _QUESTION_OPENERS or before[-1].text in _QUESTION_OPENERS:
+            continue  # "where can you …", "the place where can you …"
+        if any(w.pos in ("VERB", "AUX") and w.tag in _FINITE for w in before):
+            return [before, sentence[j:]]
+    return [sentence]
+
+
+def _without_vocative(sentence: list[Word]) -> list[Word]:
+    """The sentence without a name it opens by calling, with no comma after it ("mommy
+    I can't find my toothbrush", "honey can you grab the towel"): a bare noun that names
+    no known thing or room, followed by "I" / "we" or "can you"."""
+    if len(sentence) < 3 or sentence[0].pos not in ("NOUN", "PROPN"):
+        return sentence
+    nxt, after = sentence[1], sentence[2]
+    if not (nxt.text in ("i", "we") or (nxt.tag == "MD" and after.text == "you")):
+        return sentence
+    word = sentence[0].text
+    if canonical_label(word) is not None or room_type(word) is not None:
+        return sentence  # "kitchen can you …" keeps its room
+    return sentence[1:]
 
 
 def _split_correction(sentence: list[Word]) -> list[list[Word]]:
@@ -234,6 +271,83 @@ def _speaker_situation(sentence: list[Word]) -> bool:
     return any(w.lemma in lx.viewpoint_verbs or w.lemma in lx.facing_verbs for w in words[1:4])
 
 
+_FINITE = frozenset({"VBZ", "VBP", "VBD"})
+# Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
+_MAIN_VERB = frozenset({"ROOT", "ccomp", "conj", "parataxis"})
+_QUESTION_OPENERS = frozenset({"where", "which", "what", "who", "how", "whose", "when", "why"})
+# Words that may come before a request's verb: politeness, discourse openers and the
+# modal of a question put as a request ("so could you please check …").
+_REQUEST_OPENERS = frozenset(
+    {"please", "so", "and", "then", "now", "just", "ok", "okay", "hey", "can", "could",
+     "would", "will", "you", "kindly", ","}
+)  # fmt: skip
+
+
+def _is_request(sentence: list[Word]) -> bool:
+    """Whether a sentence asks for something to be done ("Can you check the router?",
+    "Grab the flashlight from the drawer.", "Please pick up the toys."): after any
+    openers, the sentence's root verb in its base form, with no subject but "you"."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
+        i += 1
+    if i == len(sentence):
+        return False
+    verb = sentence[i]
+    modal = any(w.text in ("can", "could", "would", "will") for w in sentence[:i])
+    if modal and not any(w.text == "you" for w in sentence[:i]):
+        return False  # "can I …" asks leave, it gives no errand
+    # after "can you" the verb is the errand however spaCy attached a run-on's parts
+    return verb.pos == "VERB" and verb.tag == "VB" and (verb.dep == "ROOT" or modal)
+
+
+def _is_statement(sentence: list[Word]) -> bool:
+    """Whether a sentence states how things are ("The wifi is down.", "There is a
+    bookshelf next to the TV."): its root is a verb, and it is no question and no
+    request (a bare phrase, "The plant we never water.", is none)."""
+    if not sentence or sentence[0].tag == "MD" or sentence[0].text in _QUESTION_OPENERS:
+        return False
+    if sentence[0].pos == "AUX" and sentence[0].lemma in ("be", "do", "have"):
+        return False  # "Is the stove off?"
+    finite = any(
+        w.pos in ("VERB", "AUX") and w.tag in _FINITE and w.dep in _MAIN_VERB for w in sentence
+    )  # not "The plant that we never water.": a phrase with a relative clause
+    return finite and not _is_request(sentence)
+
+
+def _statement_then_request(
+    clause: Clause, first: list[Word], more: Clause, later: list[Word]
+) -> bool:
+    """Whether a first sentence that states something ("The wifi is down.", "The desk is
+    by the window.") is followed by a request for another named thing ("Can you check
+    the router?", "Bring me the chair next to it."): the request's object is sought."""
+    head = clause.head
+    if head is None or head.kind != OBJECT or clause.head_negated or not _asks_for_object(more):
+        return False
+    assert more.head is not None
+    return _is_statement(first) and _is_request(later) and not _same_thing(head, more.head)
+
+
+def _point_it_at(head: NP, context: NP) -> None:
+    """Relations of ``head`` placed by "it" ("the chair next to it") take the thing the
+    sentence before named as their landmark."""
+    landmark = context.landmark()
+    head.constraints = [
+        replace(c, landmark=landmark, text=c.text.replace(ANAPHOR, context.noun))
+        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
+        else c
+        for c in head.constraints
+    ]
+
+
+def _scope_left_open(context: Clause, more: Clause) -> list[Constraint]:
+    """The room and floor a stating sentence set ("In the family room there is a
+    bookshelf …") for a request that names none of its own ("Put the DVD on the top
+    shelf.")."""
+    assert more.head is not None
+    own = {c.kind for c in [*more.places, *more.head.constraints]}
+    return [c for c in context.places if c.kind in ("room", "floor") and c.kind not in own]
+
+
 def _asks_for_object(more: Clause) -> bool:
     """Whether a later sentence asks for a named object of its own ("Which chair is
     closest to my right hand?", "Is the radiator behind me?")."""
@@ -281,6 +395,8 @@ def parse_uncached(text: str) -> ParsedQuery:
     if refine:
         notes.append("frame: refinement of the previous request")
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
+    sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
+    sentences = [_without_vocative(sentence) for sentence in sentences]
     clause = Clause()
     situation = False
     for n, sentence in enumerate(sentences):
@@ -309,6 +425,15 @@ def parse_uncached(text: str) -> ParsedQuery:
             clause, situation = more, False
             continue
         situation = False
+        if not correcting and _statement_then_request(clause, sentences[0], more, sentence):
+            # "The wifi is down. Can you check the router in the hall closet?"
+            assert more.head is not None and clause.head is not None
+            notes.append(f"the first sentence says how things are; {more.head.noun!r} is asked for")
+            _point_it_at(more.head, clause.head)
+            more.excluded_labels += clause.excluded_labels
+            more.places += _scope_left_open(clause, more)
+            clause = more
+            continue
         if correcting and _corrects_details(clause, more):
             notes.append("the correction changes the earlier request's details")
             continue

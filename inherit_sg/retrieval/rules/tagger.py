@@ -169,7 +169,13 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         span = words[i : i + n]
         if any(w.text == "," for w in span[1:]):
             continue
-        if n > 1 and span[-1].tag == "TO" and i + n < len(words) and words[i + n].tag == "VB":
+        if (
+            n > 1
+            and span[-1].tag == "TO"
+            and i + n < len(words)
+            and words[i + n].tag == "VB"
+            and not _compound_noun_at(table, words, i + n)
+        ):
             continue  # "go to charge my phone": "to" opens a purpose, it is no "go to"
         key = tuple(w.text for w in span)
         hit = table.get(key)
@@ -190,6 +196,18 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         if hit is not None:
             return n, hit, plural or (last.plural and "noun" in hit)
     return 0, {}, False
+
+
+def _compound_noun_at(
+    table: dict[tuple[str, ...], dict[str, Any]], words: list[Word], j: int
+) -> bool:
+    """Whether a noun of two or three words opens at word ``j`` ("next to trash can":
+    spaCy's verb "trash" opens a thing, not a purpose)."""
+    for n in (3, 2):
+        key = tuple(w.text for w in words[j : j + n])
+        if len(key) == n and "noun" in table.get(key, {}):
+            return True
+    return False
 
 
 # Words before a posture participle that make the participle the thing's, not the
@@ -384,6 +402,18 @@ def _inside_compound(words: list[Word], i: int) -> bool:
     return before.pos == "NOUN" and before.dep == "compound"
 
 
+def _past_verb_of_person(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` is, by spaCy, a past verb right after a personal pronoun ("I
+    left my badge", "you left it on the table"), though the vocabulary knows it as a
+    side."""
+    return (
+        i > 0
+        and words[i].pos == "VERB"
+        and words[i].tag in ("VBD", "VBN")
+        and words[i - 1].tag == "PRP"
+    )
+
+
 def _verb_of_subject(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is, by spaCy, the finite verb of the noun just before it ("the
     plant blocks the view", "the lamp lights up the desk", "the cable runs along the
@@ -402,18 +432,23 @@ def tag(words: list[Word]) -> list[Tok]:
     while i < len(words):
         n, readings, plural = _lookup(words, i)
         first = i == 0 or words[i - 1].text in (",", "please", "and", "then", "now", "just")
+        # "can you turn off the fan": the verb of a request put as a question
+        first = first or (i > 1 and words[i - 1].text == "you" and words[i - 2].tag == "MD")
         # "go stand by the door", "come sit here": the second verb is the command
         serial = i > 0 and words[i - 1].lemma in ("go", "come") and words[i - 1].pos == "VERB"
         first = first or (serial and words[i].tag == "VB")
         if n:
             last = words[i + n - 1]
+            pos, tag_ = last.pos, last.tag
+            if n > 1 and "noun" in readings and pos in ("VERB", "AUX"):
+                pos, tag_ = "NOUN", "NN"  # "tv stand under tv": spaCy's verb ends a thing's name
             tok = Tok(
                 " ".join(w.text for w in words[i : i + n]),
                 dict(readings),
                 plural,
-                pos=last.pos,
+                pos=pos,
                 lemma=last.lemma,
-                tag=last.tag,
+                tag=tag_,
             )
             if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
                 del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
@@ -424,6 +459,8 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.plural = _ONE_WORDS[words[i].text]
                 if tok.has("colour") and _inside_compound(words, i):
                     tok.tags = {"unk": words[i].text}  # "ice cream scoop", not a cream one
+                if tok.has("dir") and _past_verb_of_person(words, i):
+                    del tok.tags["dir"]  # "I left my badge on my desk": a verb, no side
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
                 if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
