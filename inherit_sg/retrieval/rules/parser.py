@@ -272,6 +272,7 @@ def _speaker_situation(sentence: list[Word]) -> bool:
 
 
 _FINITE = frozenset({"VBZ", "VBP", "VBD"})
+_IT_WORDS = frozenset({"it", "them", "this", "that", "those", "these"})
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
 _MAIN_VERB = frozenset({"ROOT", "ccomp", "conj", "parataxis"})
 _QUESTION_OPENERS = frozenset({"where", "which", "what", "who", "how", "whose", "when", "why"})
@@ -324,7 +325,19 @@ def _statement_then_request(
     if head is None or head.kind != OBJECT or clause.head_negated or not _asks_for_object(more):
         return False
     assert more.head is not None
+    if _object_is_it(later):
+        return False  # "The charger is in the conference room, can you bring it to my desk"
     return _is_statement(first) and _is_request(later) and not _same_thing(head, more.head)
+
+
+def _object_is_it(sentence: list[Word]) -> bool:
+    """Whether a request's verb takes "it" / "them" as its object ("bring it to my
+    desk"): the errand is about the thing said before."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
+        i += 1
+    rest = [w.text for w in sentence[i + 1 : i + 3]]
+    return bool(rest) and (rest[0] in _IT_WORDS or rest[-1] in _IT_WORDS and rest[0] == "me")
 
 
 def _point_it_at(head: NP, context: NP) -> None:
