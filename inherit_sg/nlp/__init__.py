@@ -118,8 +118,25 @@ def lemma_phrase(text: str) -> str:
     last = words[-1]
     if last.isalpha() and len(last) > 3 and last.endswith("s"):
         lemma = _noun_lemma(last)
+        if singular_read_as_plural(last, lemma):
+            lemma = last  # a singular that ends in "s" ("atlas", "mattress", "cactus")
         words[-1] = lemma or last
     return " ".join(words)
+
+
+def singular_read_as_plural(word: str, lemma: str) -> bool:
+    """Whether spaCy read a singular noun that ends in "s" as a plural ("atlas" →
+    "atla"): the word is a noun lemma of its own and the lemma given is none."""
+    nouns = _known_nouns()
+    return word != lemma and word in nouns and lemma not in nouns
+
+
+@lru_cache(maxsize=1)
+def _known_nouns() -> frozenset[str]:
+    """The nouns spaCy's English lemmatiser lists as lemmas (its ``lemma_index``)."""
+    lemmatizer = english().get_pipe("lemmatizer")
+    table = lemmatizer.lookups.get_table("lemma_index")  # type: ignore[attr-defined]
+    return frozenset(table["noun"])
 
 
 @lru_cache(maxsize=8192)

@@ -55,7 +55,10 @@ _FRAME_SUBJECTS = frozenset({"this", "that", "it", "these", "those", "they", "th
 # Particles between a viewpoint verb and its landmark ("come down the stairs").
 # Framing words that point at the thing wanted ("take me to the lamp").
 # Verbs whose object is what the request seeks: "can you get the salt", "fetch my keys".
-_FETCH_VERBS = frozenset({"get", "fetch", "bring", "grab", "find", "locate", "retrieve"})
+_FETCH_VERBS = frozenset(
+    {"get", "fetch", "bring", "grab", "find", "locate", "retrieve", "take", "carry", "move",
+     "collect", "deliver", "return"}
+)  # fmt: skip
 _DIRECTIVES = frozenset({
     "take me to", "take me back to", "show me", "guide me to", "lead me to", "walk me to",
     "point me to", "point me toward", "point me towards", "navigate to", "bring me",

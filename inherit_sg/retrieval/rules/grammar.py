@@ -613,7 +613,7 @@ class Grammar(Cursor):
             return True
         before = self.peek(-1)
         seen_from = before is not None and before.pos == "VERB"  # "the lamp seen from …"
-        if tok.has("from") and not tok.has("prep") and not landmark and np.kind == OBJECT:
+        if tok.has("from") and not tok.has("prep") and not landmark and np.kind in (OBJECT, ONE):
             if seen_from:
                 return False
             # "a pillow from the bed", "a towel from the bathroom": where it is taken from

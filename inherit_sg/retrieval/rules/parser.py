@@ -121,6 +121,48 @@ def _without_vocative(sentence: list[Word]) -> list[Word]:
     return sentence[1:]
 
 
+def _aside(part: list[Word]) -> bool:
+    """Whether words that open a request only set something aside ("No towels
+    required.", "No price changes today", "Don't worry about the paperwork"): "no"
+    and a noun with no finite verb after, or "do not worry about …"."""
+    texts = [w.text for w in part]
+    if texts[:4] == ["do", "not", "worry", "about"]:
+        return True
+    if len(part) < 2 or texts[0] != "no" or part[0].pos != "DET" or part[1].pos != "NOUN":
+        return False
+    if texts[1] in _CORRECTION_WORDS:
+        return False  # "no wait, the blue one" corrects
+    return not any(
+        w.tag in ("VBZ", "VBP", "VBD") and w.lemma not in _NEEDING for w in part[2:]
+    )  # "No towels required."
+
+
+def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without the asides that open it, as a sentence of their own ("No
+    signature needed. Take the post trolley …") or before a comma ("No price changes
+    today; only move the A-board …"), when a request follows."""
+    out: list[list[Word]] = []
+    for n, sentence in enumerate(sentences):
+        cut = next((j for j, w in enumerate(sentence) if w is COMMA), None)
+        if cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
+            out.append(sentence[cut + 1 :])
+        elif n + 1 < len(sentences) and _aside(sentence):
+            continue
+        else:
+            out.append(sentence)
+    return out
+
+
+def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
+    """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
+    lamp by the window?") without its "not": "is it not X" asks whether it is X."""
+    if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
+        return sentence
+    if sentence[1].text in _IT_WORDS and sentence[2].text == "not":
+        return [*sentence[:2], *sentence[3:]]
+    return sentence
+
+
 def _split_correction(sentence: list[Word]) -> list[list[Word]]:
     """A sentence that corrects itself after a comma ("the red mug, no wait, the blue
     one", "the orange… no, the yellow bucket") as two sentences, the second a correction."""
@@ -272,6 +314,7 @@ def _speaker_situation(sentence: list[Word]) -> bool:
 
 
 _FINITE = frozenset({"VBZ", "VBP", "VBD"})
+_NEEDING = frozenset({"need", "require", "want"})
 _IT_WORDS = frozenset({"it", "them", "this", "that", "those", "these"})
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
 _MAIN_VERB = frozenset({"ROOT", "ccomp", "conj", "parataxis"})
@@ -337,7 +380,7 @@ def _object_is_it(sentence: list[Word]) -> bool:
     while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
         i += 1
     rest = [w.text for w in sentence[i + 1 : i + 3]]
-    return bool(rest) and (rest[0] in _IT_WORDS or rest[-1] in _IT_WORDS and rest[0] == "me")
+    return bool(rest) and (rest[0] in _IT_WORDS or (rest[-1] in _IT_WORDS and rest[0] == "me"))
 
 
 def _point_it_at(head: NP, context: NP) -> None:
@@ -409,7 +452,8 @@ def parse_uncached(text: str) -> ParsedQuery:
         notes.append("frame: refinement of the previous request")
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
-    sentences = [_without_vocative(sentence) for sentence in sentences]
+    sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
+    sentences = _without_asides(sentences)
     clause = Clause()
     situation = False
     for n, sentence in enumerate(sentences):

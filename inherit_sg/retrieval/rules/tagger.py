@@ -366,6 +366,19 @@ def _verb_with_particle(words: list[Word], i: int) -> bool:
     return particle.text in _PARTICLES and after.pos == "DET"
 
 
+def _verb_for_me(words: list[Word], i: int) -> bool:
+    """Whether the clause-opening word ``i``, a verb by spaCy, gives something to the
+    speaker ("throw me the ball", "pass us the salt"), though the vocabulary knows it
+    as a thing (a throw)."""
+    return (
+        i + 2 < len(words)
+        and words[i].pos == "VERB"
+        and words[i].tag == "VB"
+        and words[i + 1].text in ("me", "us")
+        and words[i + 2].pos in ("DET", "PRON", "NOUN", "ADJ", "NUM")
+    )
+
+
 def _verb_before_place(words: list[Word], i: int) -> bool:
     """Whether the sentence-opening word ``i`` (or one after "go" / "come"), a verb by
     spaCy, is followed by a place ("Stand next to the bookshelf", "go sit by the window"):
@@ -481,7 +494,7 @@ def tag(words: list[Word]) -> list[Tok]:
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
                     tok.pos, tok.tag = "VERB", words[i].tag
-                if first and _verb_with_particle(words, i):
+                if (first and _verb_with_particle(words, i)) or (first and _verb_for_me(words, i)):
                     # "Switch on the lamp", "Light up the hall": a command, not a noun
                     for key in ("noun", "unk", "attr"):
                         tok.tags.pop(key, None)
@@ -509,7 +522,21 @@ def tag(words: list[Word]) -> list[Tok]:
                 tok.pos, tok.tag = "VERB", "VB"
             out.append(tok)
             i += 1
-    return out
+    return _any_but(out)
+
+
+def _any_but(toks: list[Tok]) -> list[Tok]:
+    """ "any chair but the red one": "but" after "any" and a noun (no comma between)
+    rules out what follows, as "except" does."""
+    for j in range(2, len(toks)):
+        tok = toks[j]
+        if tok.text != "but" or not toks[j - 1].has("noun", "unk", "one"):
+            continue
+        window = toks[max(0, j - 4) : j]
+        opened = [k for k, t in enumerate(window) if t.text == "any"]
+        if opened and not any(t.has("comma") for t in window[opened[-1] :]):
+            toks[j] = Tok(tok.text, {"except": tok.text}, pos=tok.pos, lemma=tok.lemma, tag=tok.tag)
+    return toks
 
 
 # Determiners that open a command's object right after its verb ("dust the bookcase").

@@ -17,7 +17,7 @@ import unicodedata
 from dataclasses import dataclass
 
 from inherit_sg.errors import QueryTextError
-from inherit_sg.nlp import analyse
+from inherit_sg.nlp import analyse, singular_read_as_plural
 
 MAX_QUERY_CHARS = 5000
 
@@ -30,6 +30,8 @@ _SPACED_DASH = re.compile(r"(?:^|\s)-{1,2}(?=\s|$)")
 _LETTER_DIGIT = re.compile(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?!st\b|nd\b|rd\b|th\b)(?=[A-Za-z])")
 _GLUED_STOP = re.compile(r"(?<=[a-z])([.!?;,])(?=[A-Za-z])")
 _SPACES = re.compile(r"\s+")
+# A chat mention of whom the message is for ("@robot grab the scissors").
+_MENTION = re.compile(r"(?<![\w@])@\w+")
 # Contracted forms spaCy returns as separate tokens, by (text, coarse tag).
 _CONTRACTED = {
     "n't": "not",
@@ -92,6 +94,7 @@ COMMA = Word(",", ",", "PUNCT", ",")
 def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
+    text = _MENTION.sub(" ", text)
     text = _CAMEL.sub(" ", text)
     text = _SPACED_DASH.sub(" \u2014", text)
     text = _SEPARATORS.sub(" ", text)
@@ -115,7 +118,10 @@ def _word(tok_text: str, lemma: str, pos: str, tag: str, dep: str) -> Word | Non
         return COMMA if any(c in _CLAUSE_PUNCT for c in low) else None
     if not any(c.isalnum() for c in low):
         return None  # quotes, symbols
-    return Word(low, lemma.lower() if lemma.strip() else low, pos, tag, dep)
+    lemma = lemma.lower() if lemma.strip() else low
+    if tag in ("NNS", "NNPS") and singular_read_as_plural(low, lemma):
+        return Word(low, low, pos, "NN", dep)  # "the atlas": spaCy's lemma "atla"
+    return Word(low, lemma, pos, tag, dep)
 
 
 def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
