@@ -130,8 +130,8 @@ def _aside(part: list[Word]) -> bool:
         return True
     if len(part) < 2 or texts[0] != "no" or part[0].pos != "DET" or part[1].pos != "NOUN":
         return False
-    if texts[1] in _CORRECTION_WORDS:
-        return False  # "no wait, the blue one" corrects
+    if texts[1] in _CORRECTION_WORDS or texts[1] in ("one", "ones"):
+        return False  # "no wait, the blue one" corrects; "no one's using the projector"
     return not any(
         w.tag in ("VBZ", "VBP", "VBD") and w.lemma not in _NEEDING for w in part[2:]
     )  # "No towels required."
@@ -151,6 +151,31 @@ def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
         else:
             out.append(sentence)
     return out
+
+
+_GREETINGS = frozenset({"hi", "hello", "hey", "dear", "morning", "afternoon", "evening", "good"})
+_SIGN_OFFS = frozenset(
+    {"thanks", "thank", "cheers", "regards", "best", "many", "kind", "ta", "thx", "love"}
+)
+
+
+def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without the greeting and sign-off of a message ("Hi Sam, can you grab
+    the laptop from my desk? Cheers, Mark"): a greeting and up to three words before a
+    comma, and a short last sentence of thanks."""
+    if not sentences:
+        return sentences
+    first = sentences[0]
+    if first and first[0].text in _GREETINGS:
+        cut = next((j for j, w in enumerate(first[:5]) if w is COMMA), None)
+        if cut is not None and cut + 1 < len(first):
+            sentences = [first[cut + 1 :], *sentences[1:]]
+        elif cut is None and len(first) <= 3 and len(sentences) > 1:
+            sentences = sentences[1:]  # "Hi team." / "Good morning."
+    last = sentences[-1]
+    if len(sentences) > 1 and last and last[0].text in _SIGN_OFFS and len(last) <= 6:
+        sentences = sentences[:-1]  # "Thanks, Jen", "Many thanks, Sister Adeyemi"
+    return sentences
 
 
 def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
@@ -453,7 +478,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
-    sentences = _without_asides(sentences)
+    sentences = _without_asides(_without_letter_frame(sentences))
     clause = Clause()
     situation = False
     for n, sentence in enumerate(sentences):
