@@ -1,11 +1,12 @@
 """Offline parser on the probe request sets: target agreement, negations and crashes.
 
-The sets in ``bench/data/probe_requests/`` were written here in ten styles people use
+The sets in ``bench/data/probe_requests/`` were written here in fourteen styles people use
 (grounding-dataset descriptions, robot requests, negations and traps that look like
 negations, short speaker-relative utterances, long multi-sentence descriptions,
 house-scale requests with real room names, remote embodied instructions in real homes,
 situated / scene / plural references, second-language crowd-worker descriptions,
-speech-recognition transcripts). A parse that runs longer than
+speech-recognition transcripts, chat messages, staff requests in non-home buildings,
+ScanRefer-style and Nr3D-style grounding text). A parse that runs longer than
 :data:`PARSE_LIMIT_S` counts as a crash (reported as ``HANG``). Each line names the target's head noun
 (``target``, or null where the person names no object) and whether something is ruled
 out (``negated``, where annotated).

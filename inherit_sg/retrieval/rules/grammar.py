@@ -84,6 +84,10 @@ def _leads_somewhere(np: NP) -> bool:
     )
 
 
+# Words that end a posture a thing can be in ("standing up", "lying down").
+_POSTURE_ENDS = frozenset({"up", "down", "upright"})
+
+
 def _opening(np: NP) -> bool:
     """Whether a phrase names a door, window or the like (``openings`` in the lexicon),
     which a thing is "outside" of by standing beside it."""
@@ -460,6 +464,10 @@ class Grammar(Cursor):
                 break  # "somewhere I can put my books away": a verb, not "put" = placed
             elif tok.has("rel") and landmark and self._plural_clause(np):
                 break  # "the pillows on the couch that aren't white": about the pillows
+            elif tok.has("be") and tok.lemma != "be" and self._doing_word(np, tok):
+                continue  # "the suitcase that isn't standing up": a posture it is not in
+            elif tok.has("be") and tok.lemma == "be" and landmark and not after_be:
+                break  # "the fridge under the desk is black": the subject is black
             elif tok.has("be") or (tok.has("rel") and self.at(*_CLAUSE_STARTS, k=1)):
                 after_be = True
             elif tok.has("wh") and tok.text == "where" and self.at("seeker", k=1):
@@ -783,9 +791,12 @@ class Grammar(Cursor):
         """After "that (doesn't)" / "that is (not)": a verb with no object says what the
         thing does or is doing ("that doesn't wobble", "isn't charging"), a state."""
         phrasal = self._neg and tok.has("fverb") and " " in tok.text  # "isn't plugged in"
+        posture = (
+            self._neg and tok.has("be") and tok.tag == "VBG" and self.text_at(1) in _POSTURE_ENDS
+        )  # "that isn't standing up"
         if not phrasal and (tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP", "VBN")):
             return False
-        if tok.has("prep", "noun", "be", "have", "placement", "view"):
+        if not posture and tok.has("prep", "noun", "be", "have", "placement", "view"):
             return False
         if tok.has("fverb") and not self._neg:
             return False  # "the desk that serves for work": a function
@@ -794,7 +805,7 @@ class Grammar(Cursor):
             return False  # "something that could help": what it can do, no state
         # "that isn't plugged in", "not hanging up": the verb's particle belongs to it
         particle = self.peek(1)
-        k = 2 if self._neg and particle is not None and particle.tag == "RP" else 1
+        k = 2 if self._neg and particle is not None and (particle.tag == "RP" or posture) else 1
         if tok.tag == "VBN" and k == 1 and not phrasal and (not self._neg or tok.has("adj")):
             return False  # a participle alone is an adjective's business ("cracked")
         after = self.peek(k)

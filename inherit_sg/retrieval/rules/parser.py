@@ -408,6 +408,46 @@ def _object_is_it(sentence: list[Word]) -> bool:
     return bool(rest) and (rest[0] in _IT_WORDS or (rest[-1] in _IT_WORDS and rest[0] == "me"))
 
 
+def _scene_then_target(clause: Clause, first: list[Word], more: Clause, later: list[Word]) -> bool:
+    """Whether a first sentence that sets the scene ("there is a desk in the corner.")
+    is followed by a description of another thing placed by it ("the chair in front of
+    it is black and has wheels."): that thing, described in its own right, is the
+    target, and the first one its landmark."""
+    head, other = clause.head, more.head
+    if head is None or other is None or head.kind != OBJECT or other.kind != OBJECT:
+        return False
+    if not other.labels or clause.head_negated or more.head_negated or _same_thing(head, other):
+        return False
+    texts = [w.text for w in first[:2]]
+    if texts[:1] != ["there"] or len(first) < 2 or first[1].lemma != "be":
+        return False
+    if not later or later[0].text != "the":
+        return False
+    by_it = [
+        c
+        for c in other.constraints
+        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
+    ]
+    by_name = any(
+        isinstance(c, RelationConstraint) and set(c.landmark.target.labels) & set(head.labels)
+        for c in other.constraints
+    )  # "the range hood above the stove is stainless steel"
+    said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]
+    return bool(by_it or by_name) and any(isinstance(c, AttributeConstraint) for c in said)
+
+
+def _description_after_it(head: NP) -> list[Constraint]:
+    """What "… next to it is black and has wheels" says after "it": spaCy's parse gives
+    it to "it", the sentence says it of its subject."""
+    return [
+        d
+        for c in head.constraints
+        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
+        for d in c.landmark.constraints
+        if isinstance(d, AttributeConstraint)
+    ]
+
+
 def _point_it_at(head: NP, context: NP) -> None:
     """Relations of ``head`` placed by "it" ("the chair next to it") take the thing the
     sentence before named as their landmark."""
@@ -513,6 +553,15 @@ def parse_uncached(text: str) -> ParsedQuery:
             notes.append(f"the first sentence says how things are; {more.head.noun!r} is asked for")
             _point_it_at(more.head, clause.head)
             more.excluded_labels += clause.excluded_labels
+            more.places += _scope_left_open(clause, more)
+            clause = more
+            continue
+        if not correcting and _scene_then_target(clause, sentences[0], more, sentence):
+            # "there is a desk in the corner. the chair in front of it is black …"
+            assert more.head is not None and clause.head is not None
+            notes.append(f"the first sentence sets the scene; {more.head.noun!r} is described")
+            more.head.constraints += _description_after_it(more.head)
+            _point_it_at(more.head, clause.head)
             more.places += _scope_left_open(clause, more)
             clause = more
             continue
