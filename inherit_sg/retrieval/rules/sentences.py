@@ -1,0 +1,147 @@
+"""Preparing a request's sentences before they are parsed: what people write around a
+request is set aside, and a run-on is split.
+
+- A statement run on into a request with no stop between them ("the wifi is down can
+  you check the router", as speech is transcribed) becomes two sentences.
+- A name called at the start ("mommy I can't find my toothbrush"), the greeting and
+  sign-off of a message ("Hi Sam, … Cheers, Mark") and asides that open a request ("No
+  signature needed.", "Don't worry about the paperwork; …") are dropped.
+- "Is it not the blue bowl?" asks whether it is: its "not" rules nothing out.
+"""
+
+from __future__ import annotations
+
+from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.vocab.objects import canonical_label
+from inherit_sg.vocab.rooms import room_type
+
+# Finite verb tags (a clause of its own, not a participle or an infinitive).
+FINITE = frozenset({"VBZ", "VBP", "VBD"})
+# Words that point back at the thing said before.
+IT_WORDS = frozenset({"it", "them", "this", "that", "those", "these"})
+QUESTION_OPENERS = frozenset({"where", "which", "what", "who", "how", "whose", "when", "why"})
+_NEEDING = frozenset({"need", "require", "want"})
+# Words that open a correction ("no wait, I mean …").
+CORRECTION_WORDS = frozenset(
+    {
+        "no",
+        "wait",
+        "sorry",
+        "actually",
+        "i",
+        "mean",
+        "meant",
+        "rather",
+        "correction",
+        ",",
+        "oh",
+        "oops",
+        "um",
+    }
+)
+
+
+def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
+    """``sentences`` with run-ons split and what is said around the request set aside
+    (see the module docstring)."""
+    sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
+    sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
+    return _without_asides(_without_letter_frame(sentences))
+
+
+def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
+    """A statement run on into a request with no stop between them ("the wifi is down
+    can you check the router", as speech is transcribed) as two sentences: split before
+    "can / could / would / will you" where a finite verb came before."""
+    for j in range(2, len(sentence) - 2):
+        word = sentence[j]
+        if word.tag != "MD" or sentence[j + 1].text != "you" or sentence[j - 1] is COMMA:
+            continue
+        before = sentence[:j]
+        if before[0].text in QUESTION_OPENERS or before[-1].text in QUESTION_OPENERS:
+            continue  # "where can you …", "the place where can you …"
+        if any(w.pos in ("VERB", "AUX") and w.tag in FINITE for w in before):
+            return [before, sentence[j:]]
+    return [sentence]
+
+
+def _without_vocative(sentence: list[Word]) -> list[Word]:
+    """The sentence without a name it opens by calling, with no comma after it ("mommy
+    I can't find my toothbrush", "honey can you grab the towel"): a bare noun that names
+    no known thing or room, followed by "I" / "we" or "can you"."""
+    if len(sentence) < 3 or sentence[0].pos not in ("NOUN", "PROPN"):
+        return sentence
+    nxt, after = sentence[1], sentence[2]
+    if not (nxt.text in ("i", "we") or (nxt.tag == "MD" and after.text == "you")):
+        return sentence
+    word = sentence[0].text
+    if canonical_label(word) is not None or room_type(word) is not None:
+        return sentence  # "kitchen can you …" keeps its room
+    return sentence[1:]
+
+
+def _aside(part: list[Word]) -> bool:
+    """Whether words that open a request only set something aside ("No towels
+    required.", "No price changes today", "Don't worry about the paperwork"): "no"
+    and a noun with no finite verb after, or "do not worry about …"."""
+    texts = [w.text for w in part]
+    if texts[:4] == ["do", "not", "worry", "about"]:
+        return True
+    if len(part) < 2 or texts[0] != "no" or part[0].pos != "DET" or part[1].pos != "NOUN":
+        return False
+    if texts[1] in CORRECTION_WORDS or texts[1] in ("one", "ones"):
+        return False  # "no wait, the blue one" corrects; "no one's using the projector"
+    return not any(
+        w.tag in ("VBZ", "VBP", "VBD") and w.lemma not in _NEEDING for w in part[2:]
+    )  # "No towels required."
+
+
+def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without the asides that open it, as a sentence of their own ("No
+    signature needed. Take the post trolley …") or before a comma ("No price changes
+    today; only move the A-board …"), when a request follows."""
+    out: list[list[Word]] = []
+    for n, sentence in enumerate(sentences):
+        cut = next((j for j, w in enumerate(sentence) if w is COMMA), None)
+        if cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
+            out.append(sentence[cut + 1 :])
+        elif n + 1 < len(sentences) and _aside(sentence):
+            continue
+        else:
+            out.append(sentence)
+    return out
+
+
+_GREETINGS = frozenset({"hi", "hello", "hey", "dear", "morning", "afternoon", "evening", "good"})
+_SIGN_OFFS = frozenset(
+    {"thanks", "thank", "cheers", "regards", "best", "many", "kind", "ta", "thx", "love"}
+)
+
+
+def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without the greeting and sign-off of a message ("Hi Sam, can you grab
+    the laptop from my desk? Cheers, Mark"): a greeting and up to three words before a
+    comma, and a short last sentence of thanks."""
+    if not sentences:
+        return sentences
+    first = sentences[0]
+    if first and first[0].text in _GREETINGS:
+        cut = next((j for j, w in enumerate(first[:5]) if w is COMMA), None)
+        if cut is not None and cut + 1 < len(first):
+            sentences = [first[cut + 1 :], *sentences[1:]]
+        elif cut is None and len(first) <= 3 and len(sentences) > 1:
+            sentences = sentences[1:]  # "Hi team." / "Good morning."
+    last = sentences[-1]
+    if len(sentences) > 1 and last and last[0].text in _SIGN_OFFS and len(last) <= 6:
+        sentences = sentences[:-1]  # "Thanks, Jen", "Many thanks, Sister Adeyemi"
+    return sentences
+
+
+def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
+    """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
+    lamp by the window?") without its "not": "is it not X" asks whether it is X."""
+    if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
+        return sentence
+    if sentence[1].text in IT_WORDS and sentence[2].text == "not":
+        return [*sentence[:2], *sentence[3:]]
+    return sentence
