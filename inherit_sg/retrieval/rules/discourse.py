@@ -30,13 +30,19 @@ _REQUEST_OPENERS = frozenset(
 )  # fmt: skip
 
 
+def _after_openers(sentence: list[Word]) -> int:
+    """Where a request's verb would stand: the first word after its openers."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
+        i += 1
+    return i
+
+
 def _is_request(sentence: list[Word]) -> bool:
     """Whether a sentence asks for something to be done ("Can you check the router?",
     "Grab the flashlight from the drawer.", "Please pick up the toys."): after any
     openers, the sentence's root verb in its base form, with no subject but "you"."""
-    i = 0
-    while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
-        i += 1
+    i = _after_openers(sentence)
     if i == len(sentence):
         return False
     verb = sentence[i]
@@ -79,9 +85,7 @@ def statement_then_request(
 def _object_is_it(sentence: list[Word]) -> bool:
     """Whether a request's verb takes "it" / "them" as its object ("bring it to my
     desk"): the errand is about the thing said before."""
-    i = 0
-    while i < len(sentence) and sentence[i].text in _REQUEST_OPENERS:
-        i += 1
+    i = _after_openers(sentence)
     rest = [w.text for w in sentence[i + 1 : i + 3]]
     return bool(rest) and (rest[0] in IT_WORDS or (rest[-1] in IT_WORDS and rest[0] == "me"))
 
@@ -96,8 +100,7 @@ def scene_then_target(clause: Clause, first: list[Word], more: Clause, later: li
         return False
     if not other.labels or clause.head_negated or more.head_negated or same_thing(head, other):
         return False
-    texts = [w.text for w in first[:2]]
-    if texts[:1] != ["there"] or len(first) < 2 or first[1].lemma != "be":
+    if len(first) < 2 or first[0].text != "there" or first[1].lemma != "be":
         return False
     if not later or later[0].text != "the":
         return False
@@ -126,7 +129,16 @@ def description_after_it(head: NP) -> list[Constraint]:
     ]
 
 
-def point_it_at(head: NP, context: NP) -> None:
+def hand_over(context: Clause, more: Clause) -> None:
+    """Make ``more``, a later sentence that took the target over, carry what the first
+    sentence said of the place: its "it" points at the first sentence's thing, and the
+    room and floor that sentence set hold unless ``more`` names its own."""
+    assert more.head is not None and context.head is not None
+    _point_it_at(more.head, context.head)
+    more.places += _scope_left_open(context, more)
+
+
+def _point_it_at(head: NP, context: NP) -> None:
     """Relations of ``head`` placed by "it" ("the chair next to it") take the thing the
     sentence before named as their landmark."""
     landmark = context.landmark()
@@ -138,7 +150,7 @@ def point_it_at(head: NP, context: NP) -> None:
     ]
 
 
-def scope_left_open(context: Clause, more: Clause) -> list[Constraint]:
+def _scope_left_open(context: Clause, more: Clause) -> list[Constraint]:
     """The room and floor a stating sentence set ("In the family room there is a
     bookshelf …") for a request that names none of its own ("Put the DVD on the top
     shelf.")."""

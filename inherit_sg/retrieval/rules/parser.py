@@ -24,10 +24,9 @@ from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_hea
 from inherit_sg.retrieval.rules.discourse import (
     asks_for_object,
     description_after_it,
-    point_it_at,
+    hand_over,
     same_thing,
     scene_then_target,
-    scope_left_open,
     statement_then_request,
 )
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
@@ -280,20 +279,18 @@ def parse_uncached(text: str) -> ParsedQuery:
         situation = False
         if not correcting and statement_then_request(clause, sentences[0], more, sentence):
             # "The wifi is down. Can you check the router in the hall closet?"
-            assert more.head is not None and clause.head is not None
+            assert more.head is not None
             notes.append(f"the first sentence says how things are; {more.head.noun!r} is asked for")
-            point_it_at(more.head, clause.head)
+            hand_over(clause, more)
             more.excluded_labels += clause.excluded_labels
-            more.places += scope_left_open(clause, more)
             clause = more
             continue
         if not correcting and scene_then_target(clause, sentences[0], more, sentence):
             # "there is a desk in the corner. the chair in front of it is black …"
-            assert more.head is not None and clause.head is not None
+            assert more.head is not None
             notes.append(f"the first sentence sets the scene; {more.head.noun!r} is described")
             more.head.constraints += description_after_it(more.head)
-            point_it_at(more.head, clause.head)
-            more.places += scope_left_open(clause, more)
+            hand_over(clause, more)
             clause = more
             continue
         if correcting and _corrects_details(clause, more):

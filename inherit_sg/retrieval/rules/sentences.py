@@ -92,7 +92,7 @@ def _aside(part: list[Word]) -> bool:
     if texts[1] in CORRECTION_WORDS or texts[1] in ("one", "ones"):
         return False  # "no wait, the blue one" corrects; "no one's using the projector"
     return not any(
-        w.tag in ("VBZ", "VBP", "VBD") and w.lemma not in _NEEDING for w in part[2:]
+        w.tag in FINITE and w.lemma not in _NEEDING for w in part[2:]
     )  # "No towels required."
 
 
@@ -114,7 +114,7 @@ def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
 
 _GREETINGS = frozenset({"hi", "hello", "hey", "dear", "morning", "afternoon", "evening", "good"})
 _SIGN_OFFS = frozenset(
-    {"thanks", "thank", "cheers", "regards", "best", "many", "kind", "ta", "thx", "love"}
+    {"thanks", "thank", "cheers", "regards", "best", "many", "kind", "ta", "love"}
 )
 
 

@@ -494,8 +494,8 @@ def tag(words: list[Word]) -> list[Tok]:
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
                     tok.pos, tok.tag = "VERB", words[i].tag
-                if (first and _verb_with_particle(words, i)) or (first and _verb_for_me(words, i)):
-                    # "Switch on the lamp", "Light up the hall": a command, not a noun
+                if first and (_verb_with_particle(words, i) or _verb_for_me(words, i)):
+                    # "Switch on the lamp", "throw me the ball": a command, not a noun
                     for key in ("noun", "unk", "attr"):
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
