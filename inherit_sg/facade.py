@@ -453,10 +453,12 @@ def build_map(
     import itertools
 
     from inherit_sg.ingest.readers import open_dataset
+    from inherit_sg.mapping.allocator import limit_arenas
     from inherit_sg.mapping.bev_pictures import write_bev_pictures
     from inherit_sg.mapping.orchestrator import Mapper
     from inherit_sg.mapping.sessions import new_session
 
+    limit_arenas()  # before the database, the models and the mapping threads start
     if max_frames is not None and max_frames < 1:
         raise InputError(f"max_frames must be at least 1, got {max_frames}")
     cfg = config or load_config()

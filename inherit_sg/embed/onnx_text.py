@@ -144,7 +144,7 @@ class OnnxSentenceEncoder:
             str(onnx_file), options, providers=["CPUExecutionProvider"]
         )
 
-    def encode(self, texts: Sequence[str], batch_size: int = 64) -> np.ndarray:
+    def encode(self, texts: Sequence[str], batch_size: int = 16) -> np.ndarray:
         """(n, dim) float32 sentence vectors (unit length when the model normalises)."""
         encodings = self._tokenizer.encode_batch(list(texts))
         order = np.argsort([-len(e.ids) for e in encodings], kind="stable")  # less padding

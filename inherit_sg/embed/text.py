@@ -62,7 +62,7 @@ class SentenceTransformerEmbedder:
         self,
         model: str = DEFAULT_MODEL,
         *,
-        batch_size: int = 64,
+        batch_size: int = 16,
         cache_size: int = 4096,
         device: str = "cpu",
         backend: str = "auto",
@@ -176,7 +176,7 @@ _SHARED_LOCK = threading.Lock()
 def get_text_embedder(
     model: str = DEFAULT_MODEL,
     *,
-    batch_size: int = 64,
+    batch_size: int = 16,
     cache_size: int = 4096,
     device: str = "cpu",
     backend: str = "auto",

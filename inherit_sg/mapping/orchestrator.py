@@ -35,6 +35,7 @@ from inherit_sg.mapping.adapters import (
     create_relation_verifier,
     create_supervisor,
 )
+from inherit_sg.mapping.allocator import limit_arenas, release_free_memory
 from inherit_sg.mapping.decisions import DecisionRunner
 from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
 from inherit_sg.mapping.missing import MissingTracker
@@ -133,6 +134,8 @@ class Mapper:
         observer: MapObserver | None = None,
     ) -> None:
         from inherit_sg.embed import get_text_embedder
+
+        limit_arenas()  # before the semantic worker and the models' threads allocate
         from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
 
         if backpressure not in ("block", "drop"):
@@ -346,6 +349,7 @@ class Mapper:
             self._timings["persist"] += time.perf_counter() - t1
             if self.observer is not None:
                 self.observer.graph(self.graph)
+        release_free_memory()  # the update's temporaries are gone: hand their pages back
         self.progress.updates += 1
         self._report()
 
