@@ -8,6 +8,7 @@ plus in-memory work. Engines are safe to share between threads.
 
 from __future__ import annotations
 
+import dataclasses
 import gc
 import threading
 import time
@@ -391,9 +392,13 @@ class QueryEngine:
         if kf_id is None:
             return ev
         try:
-            ev.keyframe = self.store.get_keyframe(kf_id, with_image=True)
+            # a keyframe's metadata does not change while the snapshot lives
+            meta = snap.memo(("keyframe", kf_id), lambda: self.store.get_keyframe(kf_id))
         except NodeNotFoundError:
             return ev
+        blob = self.store.keyframe_blob(kf_id)
+        jpeg, feature = blob if blob is not None else (None, None)
+        ev.keyframe = dataclasses.replace(meta, jpeg=jpeg, global_feature=feature)
         ev.detection = dict(snap.seen_in.get((node.id, kf_id), {}))
         if ev.keyframe.jpeg:
             ev.image = decode_jpeg(ev.keyframe.jpeg)

@@ -119,10 +119,29 @@ def _semantic(
             out[key] = found[text]
 
 
+# Answers of is_kind_of for the current object vocabulary: ranking asks it for every map
+# label against every word asked, ~500 times a request (2 ms of a request uncached).
+_KIND_MEMO: dict[tuple[str, str], bool] = {}
+_KIND_MEMO_VOCAB: list[object] = [None]
+_KIND_MEMO_MAX = 200_000
+
+
 def is_kind_of(label: str, general: str) -> bool:
     """Whether ``label`` names a kind of ``general``: by the object vocabulary ("armchair"
     is a chair, a "sofa" a seat), else by its head noun: "dining table" and "table",
     "bookshelf" and "shelf" (a compound with at least three more letters)."""
+    voc = object_vocab.vocabulary()
+    if _KIND_MEMO_VOCAB[0] is not voc or len(_KIND_MEMO) > _KIND_MEMO_MAX:
+        _KIND_MEMO.clear()  # another vocabulary was loaded (or the memo is full)
+        _KIND_MEMO_VOCAB[0] = voc
+    key = (label, general)
+    hit = _KIND_MEMO.get(key)
+    if hit is None:
+        hit = _KIND_MEMO[key] = _is_kind_of(label, general)
+    return hit
+
+
+def _is_kind_of(label: str, general: str) -> bool:
     label, general = label.lower().strip(), general.lower().strip()
     if not general or label == general:
         return False

@@ -426,11 +426,16 @@ class MapStore:
         with self._g().snapshot() as conn:
             kf = graph_read.get_keyframe(conn, keyframe_id)
         if with_image:
-            self._check_blobs()
-            blob = self._blobs.get(keyframe_id)
+            blob = self.keyframe_blob(keyframe_id)
             if blob is not None:
                 kf.jpeg, kf.global_feature = blob
         return kf
+
+    def keyframe_blob(self, keyframe_id: str) -> tuple[bytes | None, np.ndarray | None] | None:
+        """(JPEG bytes, global feature) of a keyframe from LanceDB (recently used ones from
+        memory), or None when it has none. The feature array is read-only."""
+        self._check_blobs()
+        return self._blobs.get(keyframe_id)
 
     def sessions(self) -> list[Session]:
         """All sessions, oldest first."""
