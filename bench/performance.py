@@ -83,18 +83,47 @@ def spark_dsg_sizes(work: Path) -> dict[str, Any]:
     for name, compact in (("compacted", True), ("uncompacted", False)):
         cfg = load_config(None, [f"store.compact_on_finish={str(compact).lower()}"])
         path = work / f"dsg-{name}"
+        if path.exists():  # a kept --work directory from an earlier run
+            shutil.rmtree(path)
         summary = import_into_new_map(SPARK_DSG, path, fmt="spark-dsg", config=cfg)
         files = sizes(path)
         out[name] = {"nodes": summary["nodes"], "files": files, "mb": sum(files.values()) / 1e6}
     return out
 
 
+TABLES = 6
+
+
+def machine_reference() -> dict[str, float]:
+    """Seconds of two fixed workloads, to compare runs on machines of different speed
+    (the same 2-core machine has measured the same build 35 to 54 s on different days):
+    a pure-Python loop of 3 million additions and a 1000×1000 float64 matrix product."""
+    import numpy as np
+
+    t0 = time.perf_counter()
+    total = 0
+    for i in range(3_000_000):
+        total += i
+    loop_s = time.perf_counter() - t0
+    a = np.random.default_rng(0).random((1000, 1000))
+    t0 = time.perf_counter()
+    for _ in range(5):
+        a @ a
+    return {"python_loop_s": round(loop_s, 3), "matmul_s": round((time.perf_counter() - t0) / 5, 4)}
+
+
 def table_floor(work: Path) -> dict[str, float]:
-    """Bytes plain Kuzu adds for one node table with one row, one rel table with one
-    edge, and a full-text index over one row (MB, after a checkpoint)."""
+    """Bytes plain Kuzu adds per table (MB, after a checkpoint): the mean over
+    ``TABLES`` node tables of two rows each, one node table of 1,000 rows, the mean over
+    ``TABLES`` rel tables of one edge each (stored both ways, as the map's are, and one
+    way only), and a full-text index over two rows. A node table's cost is its
+    primary-key hash index, allocated with the first row; a rel table's is its backward
+    adjacency, allocated with the first edge between two different nodes."""
     import kuzu
 
     path = work / "floor.kuzu"
+    for stale in (path, path.with_name(path.name + ".wal")):
+        stale.unlink(missing_ok=True)
     db = kuzu.Database(str(path))
     conn = kuzu.Connection(db)
 
@@ -104,15 +133,26 @@ def table_floor(work: Path) -> dict[str, float]:
 
     out: dict[str, float] = {}
     base = size()
-    conn.execute("CREATE NODE TABLE A(id STRING PRIMARY KEY, text STRING)")
-    conn.execute("CREATE (:A {id: 'a', text: 'a red chair'}), (:A {id: 'b', text: 'a bed'})")
-    out["node_table_mb"] = round(size() - base, 3)
+    for t in range(TABLES):
+        conn.execute(f"CREATE NODE TABLE A{t}(id STRING PRIMARY KEY, text STRING)")
+        conn.execute(f"CREATE (:A{t} {{id: 'a', text: 'a red chair'}}), (:A{t} {{id: 'b'}})")
+    out["node_table_mb"] = round((size() - base) / TABLES, 3)
     base = size()
-    conn.execute("CREATE REL TABLE R(FROM A TO A)")
-    conn.execute("MATCH (a:A {id: 'a'}), (b:A {id: 'b'}) CREATE (a)-[:R]->(b)")
-    out["rel_table_mb"] = round(size() - base, 3)
+    conn.execute("CREATE NODE TABLE Big(id STRING PRIMARY KEY)")
+    conn.execute("UNWIND range(1, 1000) AS i CREATE (:Big {id: 'obj:' + CAST(i AS STRING)})")
+    out["node_table_1000_rows_mb"] = round(size() - base, 3)
     base = size()
-    conn.execute("CALL CREATE_FTS_INDEX('A', 'fts', ['text'])")
+    for t in range(TABLES):
+        conn.execute(f"CREATE REL TABLE R{t}(FROM A0 TO A0)")
+        conn.execute(f"MATCH (a:A0 {{id: 'a'}}), (b:A0 {{id: 'b'}}) CREATE (a)-[:R{t}]->(b)")
+    out["rel_table_mb"] = round((size() - base) / TABLES, 3)
+    base = size()
+    for t in range(TABLES):
+        conn.execute(f"CREATE REL TABLE F{t}(FROM A0 TO A0) WITH (storage_direction='fwd')")
+        conn.execute(f"MATCH (a:A0 {{id: 'a'}}), (b:A0 {{id: 'b'}}) CREATE (a)-[:F{t}]->(b)")
+    out["rel_table_forward_only_mb"] = round((size() - base) / TABLES, 3)
+    base = size()
+    conn.execute("CALL CREATE_FTS_INDEX('A0', 'fts', ['text'])")
     out["fulltext_index_mb"] = round(size() - base, 3)
     db.close()
     return out
@@ -150,6 +190,7 @@ def main() -> None:
         results = {
             "dataset": str(dataset),
             "cpus": os.cpu_count(),
+            "machine_reference": machine_reference(),
             "builds": builds,
             "spark_dsg": spark_dsg_sizes(work) if SPARK_DSG.is_file() else None,
             "kuzu_table_floor": table_floor(work),

@@ -44,3 +44,19 @@ def test_sizes_times_and_throughput_appear_with_their_goals() -> None:
     assert "| 2 processes | 4 | 260 | 0 | 25.5 / 48.8 |" in page
     assert "| 1 process, mapping | 4 | 85 |" in page
     assert performance_section(None, None) == ""
+
+
+def test_the_table_floor_names_what_each_table_costs_and_why() -> None:
+    floor = {
+        "node_table_mb": 1.1,
+        "node_table_1000_rows_mb": 3.13,
+        "rel_table_mb": 2.1,
+        "rel_table_forward_only_mb": 0.006,
+        "fulltext_index_mb": 6.2,
+    }
+    ref = {"python_loop_s": 0.465, "matmul_s": 0.0277}
+    text = performance_section({"kuzu_table_floor": floor, "machine_reference": ref}, None)
+    assert "3 million additions 0.465 s, a 1000×1000 matrix product 0.0277 s" in text
+    assert "a node table 1.1 MB with its first rows" in text and "3.13 MB at 1,000 rows" in text
+    assert "a rel table 2.1 MB once it links two nodes (0.006 MB stored one way only" in text
+    assert "a full-text index 6.2 MB" in text and "≤ 8 MB goal cannot be met" in text
