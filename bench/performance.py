@@ -141,16 +141,16 @@ def table_floor(work: Path) -> dict[str, float]:
     conn.execute("CREATE NODE TABLE Big(id STRING PRIMARY KEY)")
     conn.execute("UNWIND range(1, 1000) AS i CREATE (:Big {id: 'obj:' + CAST(i AS STRING)})")
     out["node_table_1000_rows_mb"] = round(size() - base, 3)
-    base = size()
-    for t in range(TABLES):
-        conn.execute(f"CREATE REL TABLE R{t}(FROM A0 TO A0)")
-        conn.execute(f"MATCH (a:A0 {{id: 'a'}}), (b:A0 {{id: 'b'}}) CREATE (a)-[:R{t}]->(b)")
-    out["rel_table_mb"] = round((size() - base) / TABLES, 3)
-    base = size()
-    for t in range(TABLES):
-        conn.execute(f"CREATE REL TABLE F{t}(FROM A0 TO A0) WITH (storage_direction='fwd')")
-        conn.execute(f"MATCH (a:A0 {{id: 'a'}}), (b:A0 {{id: 'b'}}) CREATE (a)-[:F{t}]->(b)")
-    out["rel_table_forward_only_mb"] = round((size() - base) / TABLES, 3)
+    for key, prefix, storage in (
+        ("rel_table_mb", "R", ""),
+        ("rel_table_forward_only_mb", "F", " WITH (storage_direction='fwd')"),
+    ):
+        base = size()
+        for t in range(TABLES):
+            conn.execute(f"CREATE REL TABLE {prefix}{t}(FROM A0 TO A0){storage}")
+            link = f"CREATE (a)-[:{prefix}{t}]->(b)"
+            conn.execute(f"MATCH (a:A0 {{id: 'a'}}), (b:A0 {{id: 'b'}}) {link}")
+        out[key] = round((size() - base) / TABLES, 3)
     base = size()
     conn.execute("CALL CREATE_FTS_INDEX('A0', 'fts', ['text'])")
     out["fulltext_index_mb"] = round(size() - base, 3)
