@@ -134,9 +134,9 @@ class Mapper:
         observer: MapObserver | None = None,
     ) -> None:
         from inherit_sg.embed import get_text_embedder
+        from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
 
         limit_arenas()  # before the semantic worker and the models' threads allocate
-        from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
 
         if backpressure not in ("block", "drop"):
             raise ValueError("backpressure must be 'block' or 'drop'")
