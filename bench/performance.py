@@ -25,6 +25,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from inherit_sg.benchmark.machine import machine_reference
+
 ROOT = Path(__file__).resolve().parents[1]
 SPARK_DSG = ROOT.parent / "shared" / "data" / "real" / "spark_dsg" / "apartment_dsg.json"
 
@@ -92,24 +94,6 @@ def spark_dsg_sizes(work: Path) -> dict[str, Any]:
 
 
 TABLES = 6
-
-
-def machine_reference() -> dict[str, float]:
-    """Seconds of two fixed workloads, to compare runs on machines of different speed
-    (the same 2-core machine has measured the same build 35 to 54 s on different days):
-    a pure-Python loop of 3 million additions and a 1000×1000 float64 matrix product."""
-    import numpy as np
-
-    t0 = time.perf_counter()
-    total = 0
-    for i in range(3_000_000):
-        total += i
-    loop_s = time.perf_counter() - t0
-    a = np.random.default_rng(0).random((1000, 1000))
-    t0 = time.perf_counter()
-    for _ in range(5):
-        a @ a
-    return {"python_loop_s": round(loop_s, 3), "matmul_s": round((time.perf_counter() - t0) / 5, 4)}
 
 
 def table_floor(work: Path) -> dict[str, float]:

@@ -36,6 +36,7 @@ from typing import Any
 import httpx
 import numpy as np
 
+from inherit_sg.benchmark.machine import machine_reference
 from inherit_sg.facade import import_into_new_map
 from inherit_sg.ingest.synthetic.generate import generate_house, write_dataset
 from inherit_sg.ingest.synthetic.queries import generate_queries
@@ -282,6 +283,7 @@ def main() -> None:
                 "verify": False,
                 "cpus": os.cpu_count(),
                 "load_avg_at_start": [round(x, 2) for x in os.getloadavg()],
+                "machine_reference": machine_reference(),
                 "idle": {
                     "levels": [query_load(base, texts, n, args.seconds) for n in args.clients]
                 },

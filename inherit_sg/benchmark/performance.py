@@ -88,6 +88,15 @@ def service_rows(service: dict[str, Any]) -> list[list[str]]:
     return rows
 
 
+def _speed_sentence(what: str, ref: dict[str, Any]) -> str:
+    """The machine-speed reference of a run (:mod:`inherit_sg.benchmark.machine`)."""
+    return (
+        f"Machine speed during {what} (to compare runs made on different days): a "
+        f"pure-Python loop of 3 million additions {ref.get('python_loop_s')} s, a "
+        f"1000×1000 matrix product {ref.get('matmul_s')} s."
+    )
+
+
 def floor_sentence(floor: dict[str, Any]) -> str:
     """What one table costs in plain Kuzu, and what that means for a map."""
     text = (
@@ -120,13 +129,8 @@ def performance_section(perf: dict[str, Any] | None, service: dict[str, Any] | N
                 ["figure", "as built (compacted)", "without compaction", "goal"], build_rows(perf)
             )
         )
-        ref = perf.get("machine_reference") or {}
-        if ref:
-            parts.append(
-                "Machine speed during this run (to compare runs made on different days): "
-                f"a pure-Python loop of 3 million additions {ref.get('python_loop_s')} s, "
-                f"a 1000×1000 matrix product {ref.get('matmul_s')} s."
-            )
+        if perf.get("machine_reference"):
+            parts.append(_speed_sentence("these builds", perf["machine_reference"]))
         floor = perf.get("kuzu_table_floor") or {}
         if floor:
             parts.append(floor_sentence(floor))
@@ -140,4 +144,6 @@ def performance_section(perf: dict[str, Any] | None, service: dict[str, Any] | N
             f"{GOALS['qps_mapping']}):"
         )
         parts.append(table(["server", "clients", "q/s", "errors", "p50 / p99 ms"], rows))
+        if svc.get("machine_reference"):
+            parts.append(_speed_sentence("this run", svc["machine_reference"]))
     return "\n\n".join(parts)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from inherit_sg.benchmark.machine import machine_reference
 from inherit_sg.benchmark.performance import performance_section
 
 
@@ -56,7 +57,14 @@ def test_the_table_floor_names_what_each_table_costs_and_why() -> None:
     }
     ref = {"python_loop_s": 0.465, "matmul_s": 0.0277}
     text = performance_section({"kuzu_table_floor": floor, "machine_reference": ref}, None)
+    assert "during these builds" in text
     assert "3 million additions 0.465 s, a 1000×1000 matrix product 0.0277 s" in text
     assert "a node table 1.1 MB with its first rows" in text and "3.13 MB at 1,000 rows" in text
     assert "a rel table 2.1 MB once it links two nodes (0.006 MB stored one way only" in text
     assert "a full-text index 6.2 MB" in text and "≤ 8 MB goal cannot be met" in text
+
+
+def test_the_machine_reference_times_both_workloads() -> None:
+    ref = machine_reference()
+    assert set(ref) == {"python_loop_s", "matmul_s"}
+    assert 0 < ref["python_loop_s"] < 60 and 0 < ref["matmul_s"] < 60
