@@ -9,7 +9,9 @@ inside an arena stays with the process until the top of that arena is free. On h
 Two cheap measures, both no-ops where the C library is not glibc:
 
 - :func:`limit_arenas` caps the arenas at :data:`MAX_ARENAS` (the process's threads then
-  share them; set it before the mapping threads start);
+  share them). :func:`inherit_sg.facade.build_map` sets it before the database, the
+  models and the mapping threads start; a server's live sessions leave it alone, as
+  its request threads would then contend for two arenas;
 - :func:`release_free_memory` gives freed heap pages back to the system (``malloc_trim``),
   called after each global update, when the largest temporary arrays are gone.
 

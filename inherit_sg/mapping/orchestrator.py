@@ -35,7 +35,7 @@ from inherit_sg.mapping.adapters import (
     create_relation_verifier,
     create_supervisor,
 )
-from inherit_sg.mapping.allocator import limit_arenas, release_free_memory
+from inherit_sg.mapping.allocator import release_free_memory
 from inherit_sg.mapping.decisions import DecisionRunner
 from inherit_sg.mapping.geometry_state import load_geometry, new_queue, save_geometry
 from inherit_sg.mapping.missing import MissingTracker
@@ -135,8 +135,6 @@ class Mapper:
     ) -> None:
         from inherit_sg.embed import get_text_embedder
         from inherit_sg.perception import create_describer, create_segmenter, create_visual_encoder
-
-        limit_arenas()  # before the semantic worker and the models' threads allocate
 
         if backpressure not in ("block", "drop"):
             raise ValueError("backpressure must be 'block' or 'drop'")
