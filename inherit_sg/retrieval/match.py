@@ -19,6 +19,7 @@ and related types, then by embedding similarity of their labels and alternatives
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -39,6 +40,7 @@ from inherit_sg.retrieval.similarity import (
     graded,
 )
 from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
+from inherit_sg.vocab import functions as function_vocab
 from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab.rooms import room_type
 
@@ -60,6 +62,11 @@ FUNCTION_SEMANTIC_MAX = 0.5
 OPEN_FUNCTION_MAX = 0.7
 OPEN_FUNCTION_MARGIN = 0.06
 OPEN_FUNCTION_MIN_COS = 0.3
+# An unknown purpose reads as a known function when one of the vocabulary's phrasings
+# of it comes this close (MiniLM: "play my playlist" / "listen to playlist" 0.89, "make a
+# phone call" / "make phone call" 0.98; misleading neighbours such as "my plant looks
+# thirsty" / "thirsty" stay at or below 0.65).
+KNOWN_FUNCTION_MIN_COS = 0.75
 # Labels that only resemble the requested one count at most this much.
 LABEL_SEMANTIC_MAX = 0.8
 # Another word for the requested thing ("wall frame" for "picture"): a map label that is
@@ -239,23 +246,57 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
     return out
 
 
-def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
-    rank = {k: i for i, k in enumerate(con.labels)}
+def _serving(labels: list[str], kinds: Sequence[str], function: str, how: str = "") -> Matches:
+    """Map labels that are (or are a kind of) one of ``kinds``, the kinds that serve
+    ``function`` most likely first; ``how`` says how the function was read."""
+    rank = {k: i for i, k in enumerate(kinds)}
     out: Matches = {}
-    labels = sorted(snap.raw_labels())
     for label in labels:
-        kinds = canonical_labels(label)
-        ranks = [rank[c] for c in kinds if c in rank]
+        canon = canonical_labels(label)
+        ranks = [rank[c] for c in canon if c in rank]
         if ranks:
             value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * min(ranks))
-            out[label] = (value, f"a {label} serves '{con.function}'")
+            out[label] = (value, f"a {label} serves '{function}'{how}")
             continue
-        general = [(rank[g], g) for c in kinds for g in object_vocab.is_a(c) if g in rank]
+        general = [(rank[g], g) for c in canon for g in object_vocab.is_a(c) if g in rank]
         if general:
             at, kind = min(general)
             value = max(FUNCTION_MIN, 1.0 - FUNCTION_RANK_STEP * at) - FUNCTION_SUBKIND
-            out[label] = (value, f"a {label} is a {kind}, which serves '{con.function}'")
+            out[label] = (value, f"a {label} is a {kind}, which serves '{function}'{how}")
+    return out
+
+
+def _nearest_known_function(
+    con: FunctionConstraint, sim: PhraseSimilarity
+) -> tuple[str, str, float] | None:
+    """The vocabulary function whose phrasing comes closest in meaning to a purpose the
+    vocabulary does not know ("play my playlist" reads like "listen to playlist"), as
+    (function, phrase, cosine); None unless the closest phrase reaches
+    :data:`KNOWN_FUNCTION_MIN_COS`."""
+    # single words resemble by spelling as much as by meaning ("wrap" / "wrapper" 0.84):
+    # only phrases of two words or more are compared
+    asked = [con.function.strip().lower(), con.text.strip().lower()]
+    phrases = [p for p in dict.fromkeys(asked) if len(p.split()) > 1]
+    known = [(p, f) for p, f in function_vocab.sense_phrases() if len(p.split()) > 1]
+    if not phrases or not known:
+        return None
+    cos = sim.matrix(phrases, [p for p, _ in known]).max(axis=0)
+    best = int(np.argmax(cos))
+    if float(cos[best]) < KNOWN_FUNCTION_MIN_COS:
+        return None
+    phrase, function = known[best]
+    return function, phrase, float(cos[best])
+
+
+def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:
+    labels = sorted(snap.raw_labels())
+    out = _serving(labels, con.labels, con.function)
     if not con.labels:
+        near = _nearest_known_function(con, sim)
+        if near is not None:
+            function, phrase, cos = near
+            how = f", read as '{phrase}' (text embedding, cos {cos:.2f})"
+            out = _serving(labels, function_vocab.kinds_serving(function), function, how)
         _open_function(out, con, labels, sim)
         return out
     _semantic(

@@ -186,8 +186,13 @@ def attribute_sim(snap: MapSnapshot, node_id: str, con: AttributeConstraint) -> 
     if value in _words(text):
         return 1.0, f"description mentions '{value}'"
     if con.key == "size" and isinstance(node, ObjectNode):
+        # no peers of its kind to compare with: "small" is relative to the kind ("a small
+        # toilet" is a medium-sized box), so the absolute box size may confirm a size
+        # word but not contradict it
         have = size_class(tuple(float(v) for v in node.bbox.size))  # type: ignore[arg-type]
-        return (1.0 if have == value else 0.0), f"box size is {have}"
+        if have == value:
+            return 1.0, f"box size is {have}"
+        return UNKNOWN_SIM, f"box size is {have}; no other {node.label.lower()} to compare with"
     if con.key in OBSERVABLE and isinstance(node, ObjectNode):
         # not measured is not a mismatch: rank it between a match and a contradiction
         return UNKNOWN_SIM, f"{con.key} not observed"

@@ -135,6 +135,23 @@ def usual_room(function: str) -> str | None:
     return _usual_rooms().get(function.strip().lower())
 
 
+@lru_cache(maxsize=1)
+def sense_phrases() -> tuple[tuple[str, str], ...]:
+    """Every way the vocabulary asks for a function as a short phrase, with the function:
+    each verb with each of its objects ("listen to playlist", "put out fire"), a verb
+    alone where the sense has no objects, an object alone where it has no verbs. A
+    phrase that two senses share keeps the first. Retrieval reads an unknown purpose
+    by its nearest phrase here (:func:`inherit_sg.retrieval.match.resolve_matches`)."""
+    out: dict[str, str] = {}
+    for sense in senses():
+        for verb in sense.verbs or ("",):
+            for obj in sense.objects or ("",):
+                phrase = " ".join(w for w in (verb, obj) if w)
+                if phrase:
+                    out.setdefault(phrase, sense.function)
+    return tuple(out.items())
+
+
 def function_verbs() -> frozenset[str]:
     """Every verb (lemma or "lemma particle") that names a function."""
     return frozenset(v for s in senses() for v in s.verbs)

@@ -75,3 +75,24 @@ def test_an_unknown_verb_the_speaker_wants_to_do_is_a_purpose() -> None:
     assert "floss" in _open_function("Where can I floss?").function
     # with a thing the vocabulary knows, the thing is sought
     assert parse_rules("I want to inspect the heater").target.labels == ("heater",)
+
+
+def _matches_among(con: FunctionConstraint, labels: list[str]) -> dict[str, tuple[float, str]]:
+    snap = floor_snapshot([(f"o{k}", lab, 2.0 * k, 0.0, None) for k, lab in enumerate(labels)])
+    found = resolve_matches(con, "object", snap, PhraseSimilarity(get_text_embedder()))
+    assert found is not None
+    return found
+
+
+def test_an_unknown_purpose_worded_like_a_known_one_reads_as_that_function() -> None:
+    labels = ["speaker", "guitar", "book", "phone", "trash can", "blanket"]
+    # "make a telephone call" is no phrasing of the vocabulary, but close to "make phone call"
+    con = FunctionConstraint(function="make a telephone call", text="make a telephone call")
+    found = _matches_among(con, labels)
+    assert max(found, key=lambda k: found[k][0]) == "phone"
+    assert "read as 'make" in found["phone"][1] and "'make a call'" in found["phone"][1]
+    # a single word is not read by its nearest phrasing: "wrap" looks like "wrapper" (a
+    # kind of trash) but means something to wrap oneself in
+    wrap = _matches_among(_open_function("I need something to wrap myself in"), labels)
+    assert max(wrap, key=lambda k: wrap[k][0]) == "blanket"
+    assert "trash can" not in wrap

@@ -124,3 +124,17 @@ def test_a_size_word_prefers_the_more_extreme_inside_its_band() -> None:
         == 1.0
     )
     assert 0.85 < size_word_sim(0.9, "small") < size_word_sim(0.4, "small") == 1.0
+
+
+def test_the_only_one_of_its_kind_is_not_ruled_out_by_its_absolute_size() -> None:
+    # one toilet (no peers to compare with) and two small toiletries: "the small toilet"
+    # is the toilet, whose absolute box size (medium) cannot contradict "small"
+    toilet = _obj(1, "toilet", (0.4, 0.7, 0.8))
+    toiletries = [_obj(i, "toiletry", (s, s, 2 * s)) for i, s in ((2, 0.05), (3, 0.08))]
+    snap = _snapshot([toilet, *toiletries])
+    small = AttributeConstraint(key="size", value="small")
+    sim, why = attribute_sim(snap, "obj:1", small)
+    assert 0.0 < sim < 1.0 and "no other toilet to compare with" in why
+    # an absolute size that agrees still confirms the word
+    large = AttributeConstraint(key="size", value="large")
+    assert attribute_sim(_snapshot([_obj(1, "sofa", (2.2, 0.9, 0.9))]), "obj:1", large)[0] == 1.0

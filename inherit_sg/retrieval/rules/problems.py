@@ -47,7 +47,11 @@ def _terms(words: list[Word], heads_only: bool) -> set[str]:
         w
         for k, w in enumerate(words)
         if not heads_only
-        or (w.dep not in _MODIFIERS and not (k + 1 < len(words) and words[k + 1].text in colours))
+        or (
+            w.dep not in _MODIFIERS
+            and not (k + 1 < len(words) and words[k + 1].text in colours)
+            and not _opens_object_name(words, k)
+        )
     ]
     terms = {w.text for w in heads} | {w.lemma for w in heads}
     texts = [w.text for w in words]
@@ -55,6 +59,16 @@ def _terms(words: list[Word], heads_only: bool) -> set[str]:
     return (
         terms | {f"{a} {b}" for a, b in pairwise(texts)} | {f"{a} {b}" for a, b in pairwise(lemmas)}
     )
+
+
+def _opens_object_name(words: list[Word], k: int) -> bool:
+    """Whether word ``k`` and the next name a kind of object together ("fire
+    extinguisher", "smoke alarm"): the first word is part of a name, not a state, even
+    where the parser takes it for the head."""
+    if k + 1 >= len(words):
+        return False
+    pair = (f"{words[k].text} {words[k + 1].text}", f"{words[k].text} {words[k + 1].lemma}")
+    return any(object_vocab.canonical_label(p) for p in pair)
 
 
 def _is_statement(words: list[Word]) -> bool:
