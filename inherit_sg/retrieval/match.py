@@ -159,8 +159,23 @@ def _is_kind_of(label: str, general: str) -> bool:
     return " " not in general and label.endswith(general) and len(label) - len(general) >= 3
 
 
-def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float, str] | None:
-    """Exact, synonym or kind-of match of one map label, with the step that matched."""
+def _kind_only(wanted: set[str], nouns: set[str]) -> set[str]:
+    """The asked kinds that share their name with a general word but were asked for by
+    a synonym of the kind ("knickknack" asks for the decoration kind, not for paintings
+    and vases, which are decorations in the general sense)."""
+    voc = object_vocab.vocabulary()
+    return {
+        w
+        for w in wanted
+        if w in voc.general and nouns and not any(object_vocab.names_general(n, w) for n in nouns)
+    }
+
+
+def _object_label(
+    label: str, wanted: set[str], nouns: set[str], kind_only: frozenset[str] = frozenset()
+) -> tuple[float, str] | None:
+    """Exact, synonym or kind-of match of one map label, with the step that matched;
+    the kinds in ``kind_only`` (:func:`_kind_only`) do not take their general's kinds."""
     low = label.strip().lower()
     canon = canonical_labels(label)
     if low in nouns or (low in wanted and not nouns):
@@ -170,7 +185,8 @@ def _object_label(label: str, wanted: set[str], nouns: set[str]) -> tuple[float,
     hit = wanted.intersection(canon)
     if hit:
         return SYNONYM, f"label '{label}' is a {sorted(hit)[0]} (synonyms)"
-    kind = next((w for w in sorted(wanted) for c in (low, *canon) if is_kind_of(c, w)), None)
+    broad = sorted(wanted - kind_only)
+    kind = next((w for w in broad for c in (low, *canon) if is_kind_of(c, w)), None)
     if kind is not None:
         return HYPONYM, f"a {label} is a kind of {kind} (vocabulary)"
     steps = [
@@ -218,8 +234,9 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
     out: Matches = {}
     labels = sorted(snap.raw_labels())
     general: Matches = {}
+    kind_only = frozenset(_kind_only(wanted, nouns))
     for label in labels:
-        found = _object_label(label, wanted, nouns)
+        found = _object_label(label, wanted, nouns, kind_only)
         if found is not None and found[0] <= HYPERNYM:
             general[label] = found  # a more general word: resemblance may say more
         elif found is not None:

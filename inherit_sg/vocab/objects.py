@@ -423,6 +423,19 @@ def labels_for(phrase: str) -> tuple[str, ...]:
     return ()
 
 
+def names_general(phrase: str, name: str) -> bool:
+    """Whether ``phrase`` is one of the words of the general word ``name`` ("decoration",
+    "decorations" for [general.decoration]), as opposed to a synonym of a kind of the same
+    name ("knickknack", "ornament": the decoration kind, not paintings or vases)."""
+    voc = vocabulary()
+    if name not in voc.general:
+        return False
+    for key in _variants(normalise(phrase)):
+        if any(voc.general_words.get(form) == name or form == name for form in _forms(key)):
+            return True
+    return False
+
+
 def kinds_under(word: str) -> tuple[str, ...]:
     """Every kind that falls under the kind or general word ``word`` names (itself not
     included), typical first: "chair" → armchair, dining chair, office chair, ...;

@@ -60,3 +60,20 @@ def test_closest_to_the_front_door_measures_to_the_exterior_door() -> None:
     plain = _snap([("inner", "door", 10, 0), ("m1", "mirror", 1.5, 0), ("m2", "mirror", 10.5, 0)])
     ranked, _ = rank(plain, parse_rules("the mirror closest to the front door"))
     assert ranked[0].id == "obj:m2"
+
+
+def test_a_synonym_of_a_kind_named_like_a_general_word_means_the_kind_alone() -> None:
+    snap = _snap([("d", "decoration", 0, 0), ("p", "painting", 3, 0), ("v", "vase", 6, 0)])
+
+    def asked(noun: str) -> dict[str, float]:
+        con = LabelConstraint(id="c1", labels=("decoration",), noun=noun)
+        found = resolve_matches(con, "object", snap, hash_similarity())
+        assert found is not None
+        return {label: value for label, (value, _) in found.items() if value >= 0.85}
+
+    # a knickknack is an ornament (the decoration kind), not a painting or a vase
+    assert set(asked("knickknack")) == {"decoration"}
+    assert set(asked("ornaments")) == {"decoration"}
+    # the general word, and the phrases it shares with its kind, mean every decoration
+    assert set(asked("decorations")) == {"decoration", "painting", "vase"}
+    assert set(asked("decor")) == {"decoration", "painting", "vase"}
