@@ -124,6 +124,23 @@ def _word(tok_text: str, lemma: str, pos: str, tag: str, dep: str) -> Word | Non
     return Word(low, lemma, pos, tag, dep)
 
 
+# "where does the milk go?", "where should these books go", "where do the towels belong":
+# a question about the place a thing goes, asked as "where should I put ..." (the thing
+# named is not what is sought; a pronoun subject, "where do I go", is not such a question)
+_WHERE_IT_GOES = re.compile(
+    r"\bwhere(?: is| are)? (?:do|does|should|would|shall|will|must|can|could|ought to) "
+    r"(?!(?:i|we|you|they|he|she|it|one)\b)"
+    r"((?:\w+ ){0,5}?\w+) (?:go|goes|go back|belong|belongs|live|lives|get put|get stored|be put|be kept|be stored)\b",
+    re.IGNORECASE,
+)
+
+
+def where_it_goes(text: str) -> str:
+    """A question about where a thing goes ("where does the milk go") as the request for
+    a place to put it that it means ("where should I put the milk"); other text as is."""
+    return _WHERE_IT_GOES.sub(lambda m: f"where should I put {m.group(1)}", text)
+
+
 def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
     """Sentences of :class:`Word` s (clause punctuation as ``","``; empty sentences
     dropped), and the spelling corrections made first. ``text`` must have passed
@@ -131,7 +148,7 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
     from inherit_sg.retrieval.rules.spelling import correct_spelling
 
     corrected, fixes = correct_spelling(normalise(text))
-    doc = analyse(corrected)
+    doc = analyse(where_it_goes(corrected))
     out: list[list[Word]] = []
     for sent in doc.sents:
         words: list[Word] = []
