@@ -185,15 +185,15 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         )
         return [], obj
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
-    if destination is not None and obj is not None and obj.kind == ANAPHOR:
-        if any(t.has("noun") for t in g.toks[:start]):
-            # "pick up the mug … and put it in the sink": "it" is the thing named
-            # before, still the target; where it goes says nothing about where it is
-            said = obj.noun or "it"
-            g.notes.append(
-                f"'{tok.text} {said} … {destination.noun}': where the thing named before goes"
-            )
-            return [], None
+    named_before = any(t.has("noun") for t in g.toks[:start])
+    if destination is not None and obj is not None and obj.kind == ANAPHOR and named_before:
+        # "pick up the mug … and put it in the sink": "it" is the thing named before,
+        # still the target; where it goes says nothing about where it is
+        said = obj.noun or "it"
+        g.notes.append(
+            f"'{tok.text} {said} … {destination.noun}': where the thing named before goes"
+        )
+        return [], None
     if destination is not None:
         # "put this in the recycling bin by the back door": where it goes is the target
         g.notes.append(f"'{tok.text} … {destination.noun}': the destination is the target")
