@@ -139,13 +139,34 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     return loose
 
 
+# Interjections a spoken statement opens with ("oh my nose is running", "um I'm cold").
+_INTERJECTIONS = frozenset(
+    {"oh", "ooh", "um", "umm", "uh", "erm", "er", "hmm", "ah", "ahh", "ugh", "oops", "ow", "ouch"}
+)
+# Words that open a sentence before a comma without stating anything ("well, I'm cold").
+_OPENERS = frozenset({"well", "so", "okay", "ok", "right", "hey", "listen", "look", "honestly"})
+
+
+def _without_opening_fillers(words: list[Word]) -> list[Word]:
+    """The sentence without the interjections and fillers it opens with ("oh my nose is
+    running", "um, I'm a bit chilly", "well I'm cold"), which state nothing."""
+    k = 0
+    while k < len(words) and (
+        words[k].text == ","
+        or words[k].text in _INTERJECTIONS
+        or (words[k].text in _OPENERS and k + 1 < len(words) and words[k + 1].text == ",")
+    ):
+        k += 1
+    return words[k:] if k < len(words) else words
+
+
 def split_problem(
     sentences: list[list[Word]],
 ) -> tuple[FunctionConstraint | None, list[list[Word]]]:
     """A leading problem statement as a function, and the sentences left to parse."""
     if not sentences:
         return None, sentences
-    words = sentences[0]
+    words = _without_opening_fillers(sentences[0])
     cut = next((i for i, w in enumerate(words) if w.text == ","), len(words))
     first = words[:cut]
     if not _is_statement(first):
