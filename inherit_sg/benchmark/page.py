@@ -118,7 +118,7 @@ def render_page(
     if "probe" in sets:
         parts += [
             "Probe sets (`bench/data/probe_requests/`, `python bench/probe_requests.py`): "
-            "requests in fourteen further styles, each written by a separate author; the "
+            "requests in seventeen further styles, each written by a separate author; the "
             "parser was fixed against them, so they measure coverage. A parse running "
             "past 10 s counts as a crash.",
             request_sets_section.probe_section(sets["probe"]),

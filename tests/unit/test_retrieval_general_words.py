@@ -77,3 +77,18 @@ def test_a_synonym_of_a_kind_named_like_a_general_word_means_the_kind_alone() ->
     # the general word, and the phrases it shares with its kind, mean every decoration
     assert set(asked("decorations")) == {"decoration", "painting", "vase"}
     assert set(asked("decor")) == {"decoration", "painting", "vase"}
+
+
+def test_not_the_closest_one_is_any_other() -> None:
+    snap = _snap(
+        [
+            ("w", "window", 0, 0),
+            ("m1", "monitor", 1.0, 0),
+            ("m2", "monitor", 4.0, 0),
+            ("m3", "monitor", 7.0, 0),
+        ]
+    )
+    closest, _ = rank(snap, parse_rules("the monitor closest to the window"))
+    assert closest[0].id == "obj:m1"
+    other, _ = rank(snap, parse_rules("the monitor which is not closest to the window"))
+    assert other[0].id != "obj:m1" and other[-1].id in ("obj:m1", "obj:w")

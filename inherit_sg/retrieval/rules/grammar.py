@@ -1286,6 +1286,7 @@ class Grammar(Cursor):
         """A superlative ("the tallest", "closest to the door") → a constraint on ``np``;
         "closest to the centre of the room" says where in the room: a placement."""
         weight = self.weight("superlative")
+        neg = self.take_neg()  # "the monitor which is not closest to the window"
         lm = None
         if measure in ("closest", "farthest") and not landmark_now:
             side = self._towards_side()
@@ -1293,7 +1294,7 @@ class Grammar(Cursor):
                 np.constraints.append(
                     Superlative(
                         measure="ordinal", ordinal=1, direction=side, weight=weight,
-                        text=f"{text} to the {side}",
+                        text=f"{text} to the {side}", negated=neg,
                     )
                 )  # fmt: skip
                 return
@@ -1314,6 +1315,7 @@ class Grammar(Cursor):
                 landmark=lm.landmark() if lm is not None else None,
                 weight=weight,
                 text=f"{text} {lm.noun}" if lm is not None else text,
+                negated=neg,
             )
         )
 

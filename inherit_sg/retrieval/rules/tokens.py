@@ -135,6 +135,47 @@ _WHERE_IT_GOES = re.compile(
 )
 
 
+# "the picture that does not hang above the couch": a verb of position negated with "do"
+# says where the thing is not, as "is not hanging above" does
+_POSITION_ING = {
+    "hang": "hanging", "sit": "sitting", "stand": "standing", "rest": "resting",
+    "lie": "lying", "lean": "leaning", "stay": "staying",
+}  # fmt: skip
+_DO_NOT_POSITION = re.compile(
+    r"\b(that|which|who) (?:does|do|did)(?: not|n't|n’t|nt) (hang|sit|stand|rest|lie|lean|stay)\b",
+    re.IGNORECASE,
+)
+
+
+def negated_position(text: str) -> str:
+    """ "… that does not hang above" as "… that is not hanging above" (the negation then
+    reaches the place that follows); other text ("I don't sit there") as is."""
+    return _DO_NOT_POSITION.sub(
+        lambda m: f"{m.group(1)} is not {_POSITION_ING[m.group(2).lower()]}", text
+    )
+
+
+# "there is no lamp on the desk", "no monitors are on the table", "the room has no trash
+# can near the door": a thing said to be absent from a place is, for finding it, a
+# thing that is not there
+_PLACE_WORDS = (
+    r"on|in|inside|near|next to|by|beside|under|underneath|below|above|over|behind|"
+    r"in front of|between|against|at|close to|around"
+)
+_ABSENT_FROM = re.compile(
+    r"\b(?:there (?:is|are|was|were) no|(?:the|this) room (?:has|contains) no|^no) "
+    r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason)\b)"
+    r"((?:\w+ ){0,3}?\w+) (?:(?:is|are) )?(" + _PLACE_WORDS + r") ",
+    re.IGNORECASE,
+)
+
+
+def absent_from(text: str) -> str:
+    """ "there is no lamp on the desk" as "the lamp that is not on the desk" (also "no
+    monitors are on …", "the room has no … near …"); other text as is."""
+    return _ABSENT_FROM.sub(lambda m: f"the {m.group(1)} that is not {m.group(2)} ", text)
+
+
 def where_it_goes(text: str) -> str:
     """A question about where a thing goes ("where does the milk go") as the request for
     a place to put it that it means ("where should I put the milk"); other text as is."""
@@ -148,7 +189,7 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
     from inherit_sg.retrieval.rules.spelling import correct_spelling
 
     corrected, fixes = correct_spelling(normalise(text))
-    doc = analyse(where_it_goes(corrected))
+    doc = analyse(absent_from(negated_position(where_it_goes(corrected))))
     out: list[list[Word]] = []
     for sent in doc.sents:
         words: list[Word] = []
