@@ -157,7 +157,8 @@ def negated_position(text: str) -> str:
 
 # "there is no lamp on the desk", "no monitors are on the table", "the room has no trash
 # can near the door": a thing said to be absent from a place is, for finding it, a
-# thing that is not there
+# thing that is not there. Absence from the scene itself ("there is no microwave in
+# this kitchen") says that nothing is sought, and rules nothing out.
 _PLACE_WORDS = (
     r"on|in|inside|near|next to|by|beside|under|underneath|below|above|over|behind|"
     r"in front of|between|against|at|close to|around"
@@ -165,7 +166,7 @@ _PLACE_WORDS = (
 _ABSENT_FROM = re.compile(
     r"\b(?:there (?:is|are|was|were) no|(?:the|this) room (?:has|contains) no|^no) "
     r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason)\b)"
-    r"((?:\w+ ){0,3}?\w+) (?:(?:is|are) )?(" + _PLACE_WORDS + r") ",
+    r"((?:\w+ ){0,3}?\w+) (?:(?:is|are) )?(" + _PLACE_WORDS + r") (?!this\b|these\b|here\b)",
     re.IGNORECASE,
 )
 
