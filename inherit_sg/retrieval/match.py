@@ -297,7 +297,8 @@ def _nearest_known_function(
     known = [(p, f) for p, f in function_vocab.sense_phrases() if len(p.split()) > 1]
     if not phrases or not known:
         return None
-    cos = sim.matrix(phrases, [p for p, _ in known]).max(axis=0)
+    known_vectors = sim.fixed_vectors("function phrases", [p for p, _ in known])
+    cos = (sim.vectors(phrases) @ known_vectors.T).max(axis=0)
     best = int(np.argmax(cos))
     if float(cos[best]) < KNOWN_FUNCTION_MIN_COS:
         return None

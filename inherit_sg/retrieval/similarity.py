@@ -39,6 +39,18 @@ class PhraseSimilarity:
 
     def __init__(self, embedder: Embedder) -> None:
         self.embedder = embedder
+        self._fixed: dict[str, tuple[tuple[str, ...], np.ndarray]] = {}
+
+    def fixed_vectors(self, key: str, texts: Sequence[str]) -> np.ndarray:
+        """Unit vectors of a list of texts that does not change between requests (the
+        vocabulary's phrasings), stacked once per ``key`` and kept while the list stays
+        the same."""
+        wanted = tuple(texts)
+        hit = self._fixed.get(key)
+        if hit is None or hit[0] != wanted:
+            hit = (wanted, self.vectors(wanted))
+            self._fixed[key] = hit
+        return hit[1]
 
     def vectors(self, texts: Sequence[str]) -> np.ndarray:
         """Unit vectors of ``texts`` (empty input gives a (0, 0) array)."""

@@ -10,7 +10,7 @@ from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.constraints import FunctionConstraint
 from inherit_sg.retrieval.match import OPEN_FUNCTION_MAX, resolve_matches
 from inherit_sg.retrieval.similarity import PhraseSimilarity
-from tests.unit.retrieval_fixtures import floor_snapshot
+from tests.unit.retrieval_fixtures import floor_snapshot, hash_similarity
 
 LABELS = ["scale", "blanket", "sofa", "stairs", "painting", "window", "toilet", "sink", "tv"]
 
@@ -96,3 +96,13 @@ def test_an_unknown_purpose_worded_like_a_known_one_reads_as_that_function() -> 
     wrap = _matches_among(_open_function("I need something to wrap myself in"), labels)
     assert max(wrap, key=lambda k: wrap[k][0]) == "blanket"
     assert "trash can" not in wrap
+
+
+def test_the_vocabularys_phrasings_are_stacked_once_per_list() -> None:
+    sim = hash_similarity()
+    first = sim.fixed_vectors("phrases", ["make phone call", "listen to music"])
+    assert first.shape[0] == 2
+    assert sim.fixed_vectors("phrases", ["make phone call", "listen to music"]) is first
+    # another list under the same key is stacked anew
+    other = sim.fixed_vectors("phrases", ["make phone call"])
+    assert other.shape[0] == 1 and other is not first
