@@ -522,7 +522,22 @@ def tag(words: list[Word]) -> list[Tok]:
                 tok.pos, tok.tag = "VERB", "VB"
             out.append(tok)
             i += 1
-    return _any_but(out)
+    return _thing_after_except(_any_but(out))
+
+
+def _thing_after_except(toks: list[Tok]) -> list[Tok]:
+    """ "anything but that green thing", "except the broken things": "thing" right after
+    an exception and its modifiers stands for the kind sought, as "one" does."""
+    for j, tok in enumerate(toks):
+        if tok.text not in ("thing", "things") or not tok.has("generic", "noun", "unk"):
+            continue
+        k = j - 1
+        while k >= 0 and toks[k].has("det", "colour", "material", "adj", "size", "attr"):
+            k -= 1  # "that green", "the chipped"
+        if k >= 0 and k < j - 1 and toks[k].has("except"):
+            toks[j] = Tok(tok.text, {"one": True}, tok.text == "things", pos=tok.pos,
+                          lemma=tok.lemma, tag=tok.tag)  # fmt: skip
+    return toks
 
 
 def _any_but(toks: list[Tok]) -> list[Tok]:
