@@ -294,16 +294,15 @@ def _nearest_known_function(
     # only phrases of two words or more are compared
     asked = [con.function.strip().lower(), con.text.strip().lower()]
     phrases = [p for p in dict.fromkeys(asked) if len(p.split()) > 1]
-    known = [(p, f) for p, f in function_vocab.sense_phrases() if len(p.split()) > 1]
+    known, functions = function_vocab.multiword_sense_phrases()
     if not phrases or not known:
         return None
-    known_vectors = sim.fixed_vectors("function phrases", [p for p, _ in known])
+    known_vectors = sim.fixed_vectors("function phrases", known)
     cos = (sim.vectors(phrases) @ known_vectors.T).max(axis=0)
     best = int(np.argmax(cos))
     if float(cos[best]) < KNOWN_FUNCTION_MIN_COS:
         return None
-    phrase, function = known[best]
-    return function, phrase, float(cos[best])
+    return functions[best], known[best], float(cos[best])
 
 
 def _function_labels(con: FunctionConstraint, snap: MapSnapshot, sim: PhraseSimilarity) -> Matches:

@@ -152,6 +152,14 @@ def sense_phrases() -> tuple[tuple[str, str], ...]:
     return tuple(out.items())
 
 
+@lru_cache(maxsize=1)
+def multiword_sense_phrases() -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The phrases of :func:`sense_phrases` of two words or more, and the function of
+    each (single words resemble others by spelling as much as by meaning)."""
+    pairs = [(p, f) for p, f in sense_phrases() if len(p.split()) > 1]
+    return tuple(p for p, _ in pairs), tuple(f for _, f in pairs)
+
+
 def function_verbs() -> frozenset[str]:
     """Every verb (lemma or "lemma particle") that names a function."""
     return frozenset(v for s in senses() for v in s.verbs)

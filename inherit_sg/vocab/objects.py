@@ -431,7 +431,7 @@ def names_general(phrase: str, name: str) -> bool:
     if name not in voc.general:
         return False
     for key in _variants(normalise(phrase)):
-        if any(voc.general_words.get(form) == name or form == name for form in _forms(key)):
+        if any(voc.general_words.get(form) == name for form in _forms(key)):
             return True
     return False
 

@@ -135,6 +135,12 @@ _WHERE_IT_GOES = re.compile(
 )
 
 
+def where_it_goes(text: str) -> str:
+    """A question about where a thing goes ("where does the milk go") as the request for
+    a place to put it that it means ("where should I put the milk"); other text as is."""
+    return _WHERE_IT_GOES.sub(lambda m: f"where should I put {m.group(1)}", text)
+
+
 # "the picture that does not hang above the couch": a verb of position negated with "do"
 # says where the thing is not, as "is not hanging above" does
 _POSITION_ING = {
@@ -175,12 +181,6 @@ def absent_from(text: str) -> str:
     """ "there is no lamp on the desk" as "the lamp that is not on the desk" (also "no
     monitors are on …", "the room has no … near …"); other text as is."""
     return _ABSENT_FROM.sub(lambda m: f"the {m.group(1)} that is not {m.group(2)} ", text)
-
-
-def where_it_goes(text: str) -> str:
-    """A question about where a thing goes ("where does the milk go") as the request for
-    a place to put it that it means ("where should I put the milk"); other text as is."""
-    return _WHERE_IT_GOES.sub(lambda m: f"where should I put {m.group(1)}", text)
 
 
 def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:

@@ -185,8 +185,12 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         )
         return [], obj
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
-    named_before = any(t.has("noun") for t in g.toks[:start])
-    if destination is not None and obj is not None and obj.kind == ANAPHOR and named_before:
+    if (
+        destination is not None
+        and obj is not None
+        and obj.kind == ANAPHOR
+        and any(t.has("noun") for t in g.toks[:start])  # looked back only for a pronoun
+    ):
         # "pick up the mug … and put it in the sink": "it" is the thing named before,
         # still the target; where it goes says nothing about where it is
         said = obj.noun or "it"
