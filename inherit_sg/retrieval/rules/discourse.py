@@ -18,7 +18,7 @@ from inherit_sg.retrieval.rules.clause import Clause
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import Word
-from inherit_sg.vocab.objects import is_kind_of
+from inherit_sg.vocab.objects import canonical_label, is_kind_of
 
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
 _MAIN_VERB = frozenset({"ROOT", "ccomp", "conj", "parataxis"})
@@ -50,7 +50,9 @@ def _is_request(sentence: list[Word]) -> bool:
     if modal and not any(w.text == "you" for w in sentence[:i]):
         return False  # "can I …" asks leave, it gives no errand
     # after "can you" the verb is the errand however spaCy attached a run-on's parts
-    return verb.pos == "VERB" and verb.tag == "VB" and (verb.dep == "ROOT" or modal)
+    # a run-on split off a statement keeps the dependency of the whole ("so bring …": conj)
+    split_off = verb.dep in ("conj", "dep", "ccomp", "parataxis", "advcl")
+    return verb.pos == "VERB" and verb.tag == "VB" and (verb.dep == "ROOT" or modal or split_off)
 
 
 def _is_statement(sentence: list[Word]) -> bool:
@@ -63,6 +65,9 @@ def _is_statement(sentence: list[Word]) -> bool:
         return False  # "Is the stove off?"
     finite = any(
         w.pos in ("VERB", "AUX") and w.tag in FINITE and w.dep in _MAIN_VERB for w in sentence
+    ) or (  # "the coffee machine isn't working": the finite word is the root's auxiliary
+        any(w.pos == "AUX" and w.tag in FINITE and w.dep == "aux" for w in sentence)
+        and any(w.dep == "ROOT" and w.pos == "VERB" for w in sentence)
     )  # not "The plant that we never water.": a phrase with a relative clause
     return finite and not _is_request(sentence)
 
@@ -74,12 +79,22 @@ def statement_then_request(
     by the window.") is followed by a request for another named thing ("Can you check
     the router?", "Bring me the chair next to it."): the request's object is sought."""
     head = clause.head
-    if head is None or head.kind != OBJECT or clause.head_negated or not asks_for_object(more):
+    if head is None or head.kind != OBJECT or not asks_for_object(more):
+        return False
+    if clause.head_negated and not states_absence(first):
         return False
     assert more.head is not None
     if _object_is_it(later):
         return False  # "The charger is in the conference room, can you bring it to my desk"
     return _is_statement(first) and _is_request(later) and not same_thing(head, more.head)
+
+
+def states_absence(sentence: list[Word]) -> bool:
+    """Whether a sentence says that a thing is not there ("there's no milk left", "no ice
+    left in the freezer"): the thing is missing, not ruled out of what is asked next."""
+    return any(w.text == "no" and w.dep == "det" for w in sentence) and not any(
+        w.text in ("not", "except", "but") for w in sentence
+    )
 
 
 def _object_is_it(sentence: list[Word]) -> bool:
@@ -90,31 +105,119 @@ def _object_is_it(sentence: list[Word]) -> bool:
     return bool(rest) and (rest[0] in IT_WORDS or (rest[-1] in IT_WORDS and rest[0] == "me"))
 
 
-def scene_then_target(clause: Clause, first: list[Word], more: Clause, later: list[Word]) -> bool:
-    """Whether a first sentence that sets the scene ("there is a desk in the corner.")
-    is followed by a description of another thing placed by it ("the chair in front of
-    it is black and has wheels."): that thing, described in its own right, is the
-    target, and the first one its landmark."""
+def scene_then_target(
+    clause: Clause, first: list[Word], more: Clause, later: list[Word], fronted: bool = False
+) -> bool:
+    """Whether a first sentence that sets the scene ("there is a desk in the corner.",
+    "sink under the mirror.") is followed by another thing placed by the first one and
+    described in its own right ("the chair in front of it is black and has wheels.",
+    "pillow on the left side of it, white", "keyboard in front of the right monitor") or
+    put first by its place (``fronted``: "to the right of it is a paper cutter"): that
+    thing is the target, and the first one its landmark.
+
+    Otherwise the first thing stays the target, as most descriptions name it first: a
+    first sentence that says which thing is meant ("this is a wooden chair.", "find the
+    lamp"), a later sentence that only places another thing by it ("a round table is
+    beside it", "there are papers pinned on it"), and any description after one that
+    said more of the first thing (the caller checks that)."""
     head, other = clause.head, more.head
     if head is None or other is None or head.kind != OBJECT or other.kind != OBJECT:
         return False
     if not other.labels or clause.head_negated or more.head_negated or same_thing(head, other):
         return False
-    if len(first) < 2 or first[0].text != "there" or first[1].lemma != "be":
+    if _sets_scene(first) is None or not later:
         return False
-    if not later or later[0].text != "the":
-        return False
-    by_it = [
-        c
-        for c in other.constraints
-        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
-    ]
+    by_it = [c for c in other.constraints if isinstance(c, RelationConstraint) and _by_it(c)]
+    named = set(head.labels) | {
+        label
+        for c in head.constraints
+        if isinstance(c, RelationConstraint)
+        for label in c.landmark.target.labels
+    }  # "a desk with two monitors on it. keyboard in front of the right monitor"
     by_name = any(
-        isinstance(c, RelationConstraint) and set(c.landmark.target.labels) & set(head.labels)
+        isinstance(c, RelationConstraint) and set(c.landmark.target.labels) & named
         for c in other.constraints
     )  # "the range hood above the stove is stainless steel"
+    if not (by_it or by_name):
+        return False
+    if fronted:
+        return True
+    if not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in later):
+        return True  # "pillow on the left side of it, white"
     said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]
-    return bool(by_it or by_name) and any(isinstance(c, AttributeConstraint) for c in said)
+    described = any(isinstance(c, AttributeConstraint) for c in said)
+    return described and later[0].text == "the" and (by_name or _it_in_subject(later))
+
+
+# First words of a sentence that says which thing is meant ("this is …", "it's the …").
+_IDENTIFYING = frozenset({"this", "that", "it", "its", "these", "those", "here"})
+
+
+def split_scene(sentence: list[Word]) -> list[list[Word]]:
+    """A first sentence that sets the scene and runs on after a comma into a sentence of
+    its own ("theres a fridge in the kitchen, the microwave next to it is silver", "tall
+    cabinet in the corner, on top of it theres a box") as two sentences."""
+    for j, word in enumerate(sentence):
+        if word.text != "," or j < 2 or j + 3 >= len(sentence):
+            continue
+        after = sentence[j + 1 :]
+        if after[0].text != "the" and after[0].pos != "ADP":
+            continue
+        own_verb = any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in after)
+        if own_verb and _sets_scene(sentence[:j]) in ("there", "fragment"):
+            return [sentence[:j], after]
+    return [sentence]
+
+
+def _sets_scene(sentence: list[Word]) -> str | None:
+    """How a first sentence sets the scene: "there" ("there is a desk …", "you see the
+    big window?"), "fragment" (a thing and its place, no verb: "sink under the mirror",
+    or a thing that stands somewhere: "a couch sits under the window"), "statement" ("the
+    bed is in the middle of the room"), or None for a sentence that says which thing is
+    meant ("this is a chair", "find the lamp", "the chair is brown")."""
+    words = [w for w in sentence if w.text != ","]
+    if len(words) < 2 or words[0].text in _IDENTIFYING:
+        return None
+    if words[0].text == "there" and words[1].lemma == "be":
+        return "there"
+    if words[0].text == "you" and words[1].lemma == "see":
+        return "there"  # "you see the desk facing the wall?"
+    if words[0].pos == "VERB" and words[0].tag == "VB" and canonical_label(words[0].text) is None:
+        return None  # "find the copier", "select the chair" (not "sink under the mirror")
+    verbs = [w for w in words if w.tag in FINITE and w.pos in ("VERB", "AUX")]
+    if not verbs:  # a thing and its place ("from the couch, …" is a viewpoint)
+        placed = words[0].pos != "ADP" and any(w.pos == "ADP" for w in words)
+        return "fragment" if placed else None  # a bare description names the target
+    if verbs[0].lemma != "be":
+        k = words.index(verbs[0])
+        thing_stands = k > 0 and words[k - 1].pos in ("NOUN", "PROPN")
+        return "fragment" if verbs[0].lemma in _STANDING and thing_stands else None
+    after = words[words.index(verbs[0]) + 1 :]
+    return "statement" if after and after[0].pos == "ADP" else None
+
+
+# Verbs that say where a thing stands ("a couch sits under the window").
+_STANDING = frozenset({"sit", "stand", "hang", "lean", "lie", "rest"})
+
+
+def _it_in_subject(sentence: list[Word]) -> bool:
+    """Whether "it" stands inside the sentence's subject, before its verb ("the toilet
+    paper on the wall next to it is a big roll"): the subject is placed by the thing said
+    before and described in its own right. After the verb ("the table is in front of
+    it") the sentence places the thing said before."""
+    verb = next((i for i, w in enumerate(sentence) if w.dep == "ROOT"), len(sentence))
+    return any(w.text == "it" for w in sentence[:verb])
+
+
+def _by_it(relation: RelationConstraint) -> bool:
+    """Whether a relation places its thing by "it", directly ("next to it") or through
+    its landmark ("on the counter next to it")."""
+    if relation.landmark.target.anaphor:
+        return True
+    return any(
+        isinstance(c, RelationConstraint) and c.landmark.target.anaphor
+        for c in relation.landmark.constraints
+    )
 
 
 def description_after_it(head: NP) -> list[Constraint]:
@@ -141,13 +244,25 @@ def hand_over(context: Clause, more: Clause) -> None:
 def _point_it_at(head: NP, context: NP) -> None:
     """Relations of ``head`` placed by "it" ("the chair next to it") take the thing the
     sentence before named as their landmark."""
+    head.constraints = _pointed(head.constraints, context)
+
+
+def _pointed(constraints: list[Constraint], context: NP) -> list[Constraint]:
+    """``constraints`` with "it" as a landmark, here or one landmark down ("on the counter
+    next to it"), read as the thing ``context`` names."""
     landmark = context.landmark()
-    head.constraints = [
-        replace(c, landmark=landmark, text=c.text.replace(ANAPHOR, context.noun))
-        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor
-        else c
-        for c in head.constraints
-    ]
+    out: list[Constraint] = []
+    for c in constraints:
+        if isinstance(c, RelationConstraint) and c.landmark.target.anaphor:
+            c = replace(c, landmark=landmark, text=c.text.replace(ANAPHOR, context.noun))
+        elif isinstance(c, RelationConstraint) and any(
+            isinstance(d, RelationConstraint) and d.landmark.target.anaphor
+            for d in c.landmark.constraints
+        ):
+            inner = tuple(_pointed(list(c.landmark.constraints), context))
+            c = replace(c, landmark=replace(c.landmark, constraints=inner))
+        out.append(c)
+    return out
 
 
 def _scope_left_open(context: Clause, more: Clause) -> list[Constraint]:

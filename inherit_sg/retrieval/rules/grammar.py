@@ -697,7 +697,7 @@ class Grammar(Cursor):
             position = lexicon().position_nouns.get(" ".join(np.words[-2:])) or (
                 lexicon().position_nouns.get(np.words[-1]) if np.words else None
             )
-            if sub is not None and position is not None and sub.kind in (OBJECT, ROOM):
+            if sub is not None and position is not None and sub.kind in (OBJECT, ROOM, ANAPHOR):
                 self._position(np, sub, position)  # "the top of the stairs"
             elif sub is not None and sub.kind == ROOM:
                 # "the corner of the kitchen", "the floor of the closet"
@@ -840,11 +840,11 @@ class Grammar(Cursor):
             np.constraints.append(
                 RelationConstraint(
                     predicate=predicate, landmark=sub.landmark(), weight=self.weight("relation"),
-                    text=f"{where} of {sub.noun}",
+                    text=f"{where} of {sub.noun or sub.kind}",
                 )
             )  # fmt: skip
             np.places += sub.places
-        self.notes.append(f"'{where} of {sub.noun}' is a position, not the target")
+        self.notes.append(f"'{where} of {sub.noun or 'it'}' is a position, not the target")
 
     def adopt_group(self, np: NP) -> None:
         """A pending group ("in the row of lockers") names what a bare "the last one"
@@ -1093,7 +1093,10 @@ class Grammar(Cursor):
             placement = PlacementConstraint(
                 where=where, negated=neg, weight=weighted("placement", stress), text=text
             )
-            return [placement, *[replace(c, negated=neg) for c in rooms], *places]
+            # what places the wall places the target ("leaning against the wall next to
+            # the bed"); the wall's own looks stay with it
+            beside = [c for c in lm.constraints if isinstance(c, RelationConstraint)]
+            return [placement, *[replace(c, negated=neg) for c in rooms], *beside, *places]
         on_room = lm.kind == ROOM and bool(lm.words) and lm.words[-1] in lexicon().on_rooms
         if (
             lm.kind in (ROOM, AREA)

@@ -27,7 +27,9 @@ from inherit_sg.retrieval.rules.discourse import (
     hand_over,
     same_thing,
     scene_then_target,
+    split_scene,
     statement_then_request,
+    states_absence,
 )
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
 from inherit_sg.retrieval.rules.grammar import Grammar
@@ -42,7 +44,12 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.problems import open_problem, split_problem
-from inherit_sg.retrieval.rules.sentences import CORRECTION_WORDS, prepare
+from inherit_sg.retrieval.rules.sentences import (
+    CORRECTION_WORDS,
+    comma_after_denied_thing,
+    place_after_thing,
+    prepare,
+)
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
 from inherit_sg.vocab.lexicon import lexicon
@@ -247,10 +254,14 @@ def parse_uncached(text: str) -> ParsedQuery:
         sentences = [first, *sentences[1:]] if first else sentences[1:]
     if refine:
         notes.append("frame: refinement of the previous request")
+    sentences = [comma_after_denied_thing(sentence) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
+    if sentences:
+        sentences = [*split_scene(sentences[0]), *sentences[1:]]
     sentences = prepare(sentences)
     clause = Clause()
     situation = False
+    said_again = False  # a later sentence said more of the target ("… It is white.")
     for n, sentence in enumerate(sentences):
         tokens = tag(sentence)
         if clause.head is None:
@@ -262,6 +273,10 @@ def parse_uncached(text: str) -> ParsedQuery:
         correcting = _corrects(sentence)
         if correcting:
             tokens = tag(_after_correction(sentence))
+        reordered = place_after_thing(sentence)
+        fronted = reordered is not sentence  # "to the right of it is a paper cutter"
+        if fronted and not correcting:
+            tokens = tag(reordered)
         later = ClauseParser(tokens, notes)
         later.later = True
         more = later.parse(refine)
@@ -282,10 +297,15 @@ def parse_uncached(text: str) -> ParsedQuery:
             assert more.head is not None
             notes.append(f"the first sentence says how things are; {more.head.noun!r} is asked for")
             hand_over(clause, more)
-            more.excluded_labels += clause.excluded_labels
+            if not states_absence(sentences[0]):  # "there's no milk left": nothing ruled out
+                more.excluded_labels += clause.excluded_labels
             clause = more
             continue
-        if not correcting and scene_then_target(clause, sentences[0], more, sentence):
+        if (
+            not correcting
+            and not said_again
+            and scene_then_target(clause, sentences[0], more, sentence, fronted)
+        ):
             # "there is a desk in the corner. the chair in front of it is black …"
             assert more.head is not None
             notes.append(f"the first sentence sets the scene; {more.head.noun!r} is described")
@@ -305,6 +325,11 @@ def parse_uncached(text: str) -> ParsedQuery:
             clause = more  # "can you find the cat? no wait, I mean the cat's carrier"
         else:
             _merge_sentence(clause, more, notes, later)
+            said_again = said_again or (
+                clause.head is not None
+                and more.head is not None
+                and same_thing(clause.head, more.head)
+            )
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads

@@ -49,6 +49,78 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     return _without_asides(_without_letter_frame(sentences))
 
 
+# Verbs between a place put first and the thing it places ("to the right of it is a
+# paper cutter", "on the desk there's a laptop").
+_INVERTED_VERBS = frozenset({"be", "sit", "stand", "hang", "lie", "rest"})
+
+
+def place_after_thing(sentence: list[Word]) -> list[Word]:
+    """A later sentence that puts the place first ("to the right of it is a paper
+    cutter", "under it the radiator, painted white", "on top of it there's a box") in the
+    order the grammar reads: the thing, then its place ("a paper cutter to the right of
+    it"). Only where the place points back at something said before ("it") or names a
+    thing ("above the counter on the wall is the paper towel dispenser")."""
+    if len(sentence) < 4 or sentence[0].pos != "ADP":
+        return sentence
+    k = 1
+    while k < len(sentence):
+        word, before = sentence[k], sentence[k - 1]
+        if word.text == "there" or (word.lemma in _INVERTED_VERBS and word.pos in ("AUX", "VERB")):
+            break
+        if word.text in ("a", "an") or (
+            word.text == "the" and before.pos in ("PRON", "NOUN", "PROPN")
+        ):
+            break
+        if word.text == ",":
+            return sentence
+        k += 1
+    place = sentence[:k]
+    if k >= len(sentence) - 1 or not any(w.pos in ("PRON", "NOUN") for w in place):
+        return sentence
+    start = k
+    while start < len(sentence) and (
+        sentence[start].text == "there"
+        or (sentence[start].lemma in _INVERTED_VERBS and sentence[start].pos in ("AUX", "VERB"))
+    ):
+        start += 1
+    end = start
+    while end < len(sentence) and sentence[end].text not in (",", "and"):
+        end += 1
+    thing = sentence[start:end]
+    if not any(w.pos in ("NOUN", "PROPN") for w in thing):
+        return sentence
+    return [*thing, *place, *sentence[end:]]
+
+
+# Words that may open a spoken correction before its "not" ("no no not the kettle …").
+_CORRECTION_FILLERS = frozenset({"no", "nope", "uh", "um", "oh", "wait", ",", "nah"})
+# Words of a noun phrase between its determiner and the next one.
+_NP_POS = frozenset({"ADJ", "NOUN", "PROPN", "NUM", "ADV"})
+
+
+def comma_after_denied_thing(sentence: list[Word]) -> list[Word]:
+    """A spoken correction with no comma ("not the kettle the toaster", as speech is
+    transcribed) with the comma put back after the thing denied: "not the kettle, the
+    toaster"."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _CORRECTION_FILLERS:
+        i += 1
+    if i + 2 >= len(sentence) or sentence[i].text != "not" or sentence[i + 1].pos != "DET":
+        return sentence
+    j = i + 2
+    while j < len(sentence) and sentence[j].pos in _NP_POS:
+        j += 1
+    if (
+        j < len(sentence)
+        and j > i + 2
+        and sentence[j].pos in ("DET", "PRON")
+        and sentence[j].tag in ("DT", "PRP$")
+        and sentence[j - 1].pos in ("NOUN", "PROPN", "NUM")
+    ):
+        return [*sentence[:j], COMMA, *sentence[j:]]
+    return sentence
+
+
 def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
     """A statement run on into a request with no stop between them ("the wifi is down
     can you check the router", as speech is transcribed) as two sentences: split before
@@ -62,6 +134,36 @@ def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
             continue  # "where can you …", "the place where can you …"
         if any(w.pos in ("VERB", "AUX") and w.tag in FINITE for w in before):
             return [before, sentence[j:]]
+    return _split_before_errand(sentence)
+
+
+# Verbs of an errand that may follow a statement with no stop ("there's no milk left so
+# bring the juice", "don't worry about the mess bring the vacuum").
+_ERRAND_VERBS = frozenset({"bring", "get", "grab", "fetch", "take", "find", "use", "check"})
+# Words that join a statement to the errand that follows it.
+_ERRAND_LINKS = frozenset({"so", "just", "then", "instead"})
+
+
+def _split_before_errand(sentence: list[Word]) -> list[list[Word]]:
+    """A statement run on into an errand ("the coffee machine isn't working so bring the
+    kettle", "it won't turn on bring me a spare battery") as two sentences: split before
+    the errand's verb (and "so" / "just" before it) where a finite verb came before."""
+    for j in range(2, len(sentence) - 1):
+        word = sentence[j]
+        if word.lemma not in _ERRAND_VERBS or word.tag != "VB" or word.text != word.lemma:
+            continue
+        k = j
+        while k > 0 and sentence[k - 1].text in _ERRAND_LINKS | {"um", "uh", "like"}:
+            k -= 1
+        if k < 2 or sentence[k - 1].text in (",", "and", "or", "to", "please", "you", "not"):
+            continue  # "to get", "and bring", "could you just grab"
+        if sentence[k - 1].tag == "MD" or sentence[k - 1].lemma in ("go", "come", "do"):
+            continue  # "can bring", "go get", "do get"
+        before = sentence[:k]
+        if before[0].text in QUESTION_OPENERS or any(w.lemma in _ERRAND_VERBS for w in before):
+            continue  # "don't bring the red bag bring the black one": one errand, corrected
+        if any(w.pos in ("VERB", "AUX") and w.tag in FINITE for w in before):
+            return [before, sentence[k:]]
     return [sentence]
 
 

@@ -18,6 +18,7 @@ import re
 import threading
 from functools import lru_cache
 from importlib import resources
+from itertools import pairwise
 
 from inherit_sg.vocab import colours as colour_vocab
 from inherit_sg.vocab import objects as object_vocab
@@ -84,13 +85,50 @@ def is_known_word(word: str) -> bool:
     return word in vocabulary_words() or _known(word)
 
 
+# A real word this many times rarer than a thing's name one vowel away is read as that
+# name misspelt ("calender" → "calendar": 1.3 M against 101 M in the English dictionary).
+_RARER = 40
+_VOWELS = frozenset("aeiouy")
+
+
+def _vowel_slip(word: str, name: str) -> bool:
+    """Whether ``name`` is ``word`` with the vowel of its unstressed last syllable written
+    as another ("calender", "dispensar"): the commonest misspelling of a real word, where
+    the vowel is heard as "uh". A vowel further in ("suction" / "section") is a word of its
+    own."""
+    if len(word) != len(name):
+        return False
+    diff = [(i, a, b) for i, (a, b) in enumerate(zip(word, name, strict=True)) if a != b]
+    if len(diff) != 1:
+        return False
+    i, a, b = diff[0]
+    return a in _VOWELS and b in _VOWELS and len(word) - i <= 3
+
+
+def _misspelt_name(word: str) -> str | None:
+    """The thing's name that a rare real word of five letters or more misspells by one
+    vowel ("calender" → "calendar"), or None."""
+    if len(word) < 5:
+        return None
+    counts = _checker().words  # type: ignore[attr-defined]
+
+    def english(w: str) -> int:  # the dictionary's count, without the vocabulary's boost
+        return int(counts.get(w, 0)) % _VOCAB_COUNT
+
+    names = [n for n in _object_words() if _vowel_slip(word, n)]
+    best = max(names, key=english, default=None)
+    if best is None or english(best) < _RARER * english(word):
+        return None
+    return best
+
+
 @lru_cache(maxsize=16384)
 def correct_word(word: str) -> str | None:
     """The correction of one lower-case word, or None when it stands as written."""
     if len(word) < 3 or not word.isalpha() or word in vocabulary_words():
         return None
     if _known(word):
-        return None
+        return _misspelt_name(word)
     from symspellpy import Verbosity
 
     found = _checker().lookup(word, Verbosity.CLOSEST, max_edit_distance=1)  # type: ignore[attr-defined]
@@ -150,7 +188,75 @@ def correct_spelling(text: str) -> tuple[str, list[tuple[str, str]]]:
         return right.capitalize() if word[0].isupper() else right
 
     text = _WORD.sub(fix, text)
+    text = _names_mended(text, fixes)  # "tv remove" → "tv remote"
     return _CLOSET_TO.sub(lambda m: _closest_typo(m, fixes), text), fixes
+
+
+@lru_cache(maxsize=1)
+def _second_words() -> dict[str, frozenset[str]]:
+    """For each first word of a two-word thing's name, its second words ("tv" → remote,
+    stand, …)."""
+    table: dict[str, set[str]] = {}
+    for phrase in object_vocab.phrases():
+        words = phrase.split()
+        if len(words) == 2:
+            table.setdefault(words[0], set()).add(words[1])
+    return {first: frozenset(seconds) for first, seconds in table.items()}
+
+
+@lru_cache(maxsize=1)
+def _one_edit() -> object:
+    from symspellpy.editdistance import DistanceAlgorithm, EditDistance
+
+    return EditDistance(DistanceAlgorithm.DAMERAU_OSA)
+
+
+@lru_cache(maxsize=1)
+def _verbs_only() -> frozenset[str]:
+    """Words the vocabulary knows only as the verbs of functions ("remove", "charge")."""
+    lx = lexicon()
+    other: set[str] = set(lx.directions) | set(lx.sides) | set(lx.adjectives) | set(lx.filler)
+    verbs = {w for v in function_verbs() for w in v.split()}
+    return frozenset(verbs - other - _object_words())
+
+
+# Words before a thing's name ("the tv remove", "my phone charter").
+_NAME_OPENERS = frozenset({"the", "my", "a", "an", "your", "our", "his", "her", "their", "this"})
+
+
+def _names_mended(text: str, fixes: list[tuple[str, str]]) -> str:
+    """ "tv remove" → "tv remote", "phone charter" → "phone charger": a real word one edit
+    from the second word of a thing's name whose first word comes just before it, where
+    the word is no word of the vocabulary and only one such name fits."""
+    words = list(re.finditer(r"[A-Za-z]+", text))
+    out, last = [], 0
+    for k, (before, match) in enumerate(pairwise(words)):
+        first, second = before.group(0).lower(), match.group(0).lower()
+        seconds = _second_words().get(first)
+        if (
+            not seconds
+            or len(second) < 4
+            or text[before.end() : match.start()] != " "
+            or second in seconds
+            or second in _object_words()
+        ):
+            continue
+        # a verb the vocabulary knows ("remove") only right after "the" / "my"; other
+        # words of the vocabulary stand ("the wall right above the bed")
+        named = k > 0 and words[k - 1].group(0).lower() in _NAME_OPENERS
+        if second in vocabulary_words() and not (named and second in _verbs_only()):
+            continue
+        near = [
+            w
+            for w in sorted(seconds)
+            if _one_edit().compare(second, w, 1) == 1  # type: ignore[attr-defined]
+            and second != f"{w}s"  # "pc towers": a plural, not a slip
+        ]
+        if len(near) == 1:
+            fixes.append((match.group(0), near[0]))
+            out += [text[last : match.start()], near[0]]
+            last = match.end()
+    return "".join([*out, text[last:]])
 
 
 # "the monitor closet to the window": "closest" with a dropped letter, after a thing's name

@@ -434,7 +434,12 @@ def _verb_of_subject(words: list[Word], i: int) -> bool:
     if i == 0 or words[i].pos != "VERB" or words[i].tag not in ("VBZ", "VBP"):
         return False
     subject = words[i - 1]
-    return words[i].dep in ("ROOT", "conj", "relcl") and subject.dep == "nsubj"
+    if words[i].dep in ("ROOT", "conj", "relcl") and subject.dep == "nsubj":
+        return True
+    # "the shoes by the door are black and sit on a mat": a second verb of a thing's
+    # sentence (the latest subject before it is a noun, not "I" or "you")
+    subjects = [w for w in words[:i] if w.dep == "nsubj"]
+    return words[i].dep == "conj" and bool(subjects) and subjects[-1].pos in ("NOUN", "PROPN")
 
 
 def tag(words: list[Word]) -> list[Tok]:

@@ -180,7 +180,17 @@ _ABSENT_FROM = re.compile(
 def absent_from(text: str) -> str:
     """ "there is no lamp on the desk" as "the lamp that is not on the desk" (also "no
     monitors are on …", "the room has no … near …"); other text as is."""
-    return _ABSENT_FROM.sub(lambda m: f"the {m.group(1)} that is not {m.group(2)} ", text)
+    return _ABSENT_FROM.sub(_thing_not_there, text)
+
+
+# "there's no ice left in the freezer": the thing has run out, it is not elsewhere
+_RUN_OUT = frozenset({"left", "remaining", "more"})
+
+
+def _thing_not_there(match: re.Match[str]) -> str:
+    if _RUN_OUT & set(match.group(1).lower().split()):
+        return match.group(0)
+    return f"the {match.group(1)} that is not {match.group(2)} "
 
 
 def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
