@@ -191,6 +191,8 @@ class Grammar(Cursor):
                 pass
             elif tok.has("colour", "material", "adj") and self._adjective_here():
                 self._attribute(np, tok)
+            elif self._open_adjective():
+                self._open_attribute(np, tok)  # "the dried out ones"
             elif tok.has("neg") and self.at("colour", "material", "adj", k=1):
                 self.negate()
             elif tok.has("emph", "hedge"):
@@ -231,6 +233,31 @@ class Grammar(Cursor):
         if tok.has("colour", "adj"):
             return not (tok.has("noun") and not self.nounish(1))
         return self.nounish(1) or self.at("colour", "adj", "one", k=1)  # "the metal one"
+
+    def _open_adjective(self) -> bool:
+        """An adjective the vocabulary does not know, just before "one" / "ones" ("the
+        dry ones", "the dried out one"; a particle may follow it)."""
+        tok = self.peek()
+        assert tok is not None
+        if tok.tags.keys() - {"unk", "fverb", "overb"} or not (
+            tok.pos == "ADJ" or (tok.pos == "VERB" and tok.tag in ("VBN", "VBD"))
+        ):
+            return False
+        k = 2 if self.text_at(1) in ("out", "up", "off") else 1
+        return self.at("one", k=k)
+
+    def _open_attribute(self, np: NP, tok: Tok) -> None:
+        """An adjective the vocabulary does not know, as a description to look for."""
+        words = [tok.text]
+        if self.text_at(1) in ("out", "up", "off"):
+            self.advance()
+            words.append(self.toks[self.i].text)
+        np.constraints.append(
+            AttributeConstraint(
+                key="other", value=" ".join(words), negated=self.take_neg(),
+                weight=self.weight("attribute"), text=" ".join(words),
+            )
+        )  # fmt: skip
 
     def _attribute(self, np: NP, tok: Tok) -> None:
         neg = self.take_neg()

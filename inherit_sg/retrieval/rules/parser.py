@@ -16,6 +16,7 @@ from functools import lru_cache
 
 from inherit_sg.retrieval.constraints import (
     AttributeConstraint,
+    LabelConstraint,
     Viewpoint,
 )
 from inherit_sg.retrieval.query import ParsedQuery
@@ -47,8 +48,11 @@ from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.sentences import (
     CORRECTION_WORDS,
     comma_after_denied_thing,
+    denial_then_choice,
+    denies_first,
     place_after_thing,
     prepare,
+    without_repeating,
 )
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
@@ -254,7 +258,9 @@ def parse_uncached(text: str) -> ParsedQuery:
         sentences = [first, *sentences[1:]] if first else sentences[1:]
     if refine:
         notes.append("frame: refinement of the previous request")
-    sentences = [comma_after_denied_thing(sentence) for sentence in sentences]
+    if sentences:
+        sentences = [without_repeating(sentences[0]), *sentences[1:]]
+    sentences = [comma_after_denied_thing(sentence) for sentence in denial_then_choice(sentences)]
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     if sentences:
         sentences = [*split_scene(sentences[0]), *sentences[1:]]
@@ -336,7 +342,26 @@ def parse_uncached(text: str) -> ParsedQuery:
     elif unknown_problem is not None and _asks_only_for_help(clause):
         notes.append(f"the statement {unknown_problem.text!r} says what is needed (by meaning)")
         clause.implied.append(unknown_problem)
+    if sentences and denies_first(sentences[0]):
+        _denied_details(clause, notes)
     return assemble(text, clause, refine, notes, [w.text for w in words])
+
+
+def _denied_details(clause: Clause, notes: list[str]) -> None:
+    """A denied thing that nothing replaced ("anything but the mug with the chip", "not
+    the lamp by the door"): the kind stays, and its details are what is ruled out."""
+    head = clause.head
+    if not clause.head_negated or head is None or head.kind != OBJECT:
+        return
+    details = [c for c in head.constraints if not isinstance(c, LabelConstraint)]
+    if not details and not clause.negated_head_places:
+        return
+    head.constraints = [
+        replace(c, negated=not c.negated) if c in details else c for c in head.constraints
+    ]
+    ClauseParser._negate_head_places(clause)
+    clause.head_negated = False
+    notes.append(f"'not the {head.noun}' alone: the kind stays, its details are ruled out")
 
 
 @lru_cache(maxsize=4096)

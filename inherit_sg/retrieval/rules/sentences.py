@@ -93,7 +93,10 @@ def place_after_thing(sentence: list[Word]) -> list[Word]:
 
 
 # Words that may open a spoken correction before its "not" ("no no not the kettle …").
-_CORRECTION_FILLERS = frozenset({"no", "nope", "uh", "um", "oh", "wait", ",", "nah"})
+_CORRECTION_FILLERS = frozenset(
+    {"no", "nope", "nah", "wait", ",", "uh", "um", "umm", "oh", "ugh", "hmm", "ah", "er", "erm",
+     "oops", "ok", "okay"}
+)  # fmt: skip
 # Words of a noun phrase between its determiner and the next one.
 _NP_POS = frozenset({"ADJ", "NOUN", "PROPN", "NUM", "ADV"})
 
@@ -105,7 +108,7 @@ def comma_after_denied_thing(sentence: list[Word]) -> list[Word]:
     i = 0
     while i < len(sentence) and sentence[i].text in _CORRECTION_FILLERS:
         i += 1
-    if i + 2 >= len(sentence) or sentence[i].text != "not" or sentence[i + 1].pos != "DET":
+    if i + 2 >= len(sentence) or sentence[i].text != "not" or not _opens_phrase(sentence[i + 1]):
         return sentence
     j = i + 2
     while j < len(sentence) and sentence[j].pos in _NP_POS:
@@ -113,12 +116,78 @@ def comma_after_denied_thing(sentence: list[Word]) -> list[Word]:
     if (
         j < len(sentence)
         and j > i + 2
-        and sentence[j].pos in ("DET", "PRON")
-        and sentence[j].tag in ("DT", "PRP$")
+        and _opens_phrase(sentence[j])
         and sentence[j - 1].pos in ("NOUN", "PROPN", "NUM")
     ):
         return [*sentence[:j], COMMA, *sentence[j:]]
     return sentence
+
+
+def _opens_phrase(word: Word) -> bool:
+    """Whether a word opens a noun phrase: a determiner or a possessive ("the", "my"), or
+    "that" / "this" however spaCy read them ("not this bottle that bottle")."""
+    return (word.pos in ("DET", "PRON") and word.tag in ("DT", "PRP$")) or word.text in (
+        "this",
+        "that",
+        "these",
+        "those",
+    )
+
+
+def denies_first(sentence: list[Word]) -> bool:
+    """Whether a sentence opens by denying a thing ("not the lamp by the door", "anything
+    but the mug with the chip"), not by a question or a statement that holds a "not"."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _CORRECTION_FILLERS:
+        i += 1
+    rest = sentence[i:]
+    if len(rest) >= 2 and rest[0].text == "not" and _opens_phrase(rest[1]):
+        return True
+    return (
+        len(rest) >= 3
+        and rest[0].text in ("anything", "everything", "any")
+        and rest[1].text in ("but", "except")
+        and _opens_phrase(rest[2])
+    )
+
+
+def denial_then_choice(sentences: list[list[Word]]) -> list[list[Word]]:
+    """A denied thing said on its own, then the thing meant ("NO. not the blue pen. the
+    black pen.") as one sentence: "not the blue pen, the black pen"."""
+    out: list[list[Word]] = []
+    for sentence in sentences:
+        if out and _only_denial(out[-1]) and sentence and _opens_phrase(sentence[0]):
+            out[-1] = [*out[-1], COMMA, *sentence]
+        else:
+            out.append(sentence)
+    return out
+
+
+def _only_denial(sentence: list[Word]) -> bool:
+    """Whether a sentence only denies a thing ("not the blue pen"): "not", a noun phrase,
+    no verb."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _CORRECTION_FILLERS:
+        i += 1
+    rest = sentence[i:]
+    return (
+        len(rest) >= 3
+        and rest[0].text == "not"
+        and _opens_phrase(rest[1])
+        and all(w.pos not in ("VERB", "AUX") for w in rest)
+        and COMMA not in rest
+    )
+
+
+# What a speaker says before repeating the thing meant ("i said the thermometer").
+_REPEATING = frozenset({"said", "mean", "meant", "asked", "wanted"})
+
+
+def without_repeating(sentence: list[Word]) -> list[Word]:
+    """A first sentence without the "I said" / "I meant" that opens it before the thing
+    ("i said the thermometer not the blood pressure cuff")."""
+    repeating = len(sentence) > 3 and sentence[0].text == "i" and sentence[1].text in _REPEATING
+    return sentence[2:] if repeating and _opens_phrase(sentence[2]) else sentence
 
 
 def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
@@ -159,6 +228,8 @@ def _split_before_errand(sentence: list[Word]) -> list[list[Word]]:
             continue  # "to get", "and bring", "could you just grab"
         if sentence[k - 1].tag == "MD" or sentence[k - 1].lemma in ("go", "come", "do"):
             continue  # "can bring", "go get", "do get"
+        if sentence[j + 1].text in IT_WORDS:
+            continue  # "… need washing, so bring that one": the errand is about what was said
         before = sentence[:k]
         if before[0].text in QUESTION_OPENERS or any(w.lemma in _ERRAND_VERBS for w in before):
             continue  # "don't bring the red bag bring the black one": one errand, corrected
