@@ -54,6 +54,8 @@ _FRAME_SUBJECTS = frozenset({"this", "that", "it", "these", "those", "they", "th
 # Particles and prepositions after a request verb that lead to its object ("walk over to").
 # Particles between a viewpoint verb and its landmark ("come down the stairs").
 # Framing words that point at the thing wanted ("take me to the lamp").
+# Verbs of searching a place for a thing ("check the counter for my watch").
+_SEARCH_VERBS = frozenset({"check", "search", "scan", "inspect", "comb", "try"})
 # Verbs whose object is what the request seeks: "can you get the salt", "fetch my keys".
 _FETCH_VERBS = frozenset(
     {"get", "fetch", "bring", "grab", "find", "locate", "retrieve", "take", "carry", "move",
@@ -678,6 +680,26 @@ class ClauseParser(Grammar):
             out.head = candidate
             self._route(out, [c for c in made if c.kind != "function"])
 
+    def _searched_for(self, out: Clause, thing: NP, prev: Tok | None) -> bool:
+        """ "check the counter for my watch", "search the closet for the umbrella": the
+        thing searched for is the target, and the place searched its landmark."""
+        head = out.head
+        if prev is None or prev.text != "for" or head is None or head.kind != OBJECT:
+            return False
+        if thing.kind != OBJECT or not thing.labels:
+            return False
+        if not any(t.lemma in _SEARCH_VERBS for t in self.toks[: self.i]):
+            return False
+        thing.constraints.append(
+            RelationConstraint(
+                predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
+                text=f"near {head.noun}",
+            )
+        )  # fmt: skip
+        self.notes.append(f"'{thing.noun}' is searched for at the {head.noun}")
+        out.head = thing
+        return True
+
     def _attach_postmodifiers(self, head: NP) -> None:
         start = self.i
         self._postmodifiers(head, landmark=False)
@@ -748,6 +770,8 @@ class ClauseParser(Grammar):
             out.negated_head_places = own_places if out.head_negated else []
             return
         if self._replaces_head(out, np, neg) or self._asked_for(out, np, neg, prev, start):
+            return
+        if not neg and self._searched_for(out, np, prev):
             return
         j = start - 1
         while j >= 0 and (self.toks[j].tag == "RP" or self.toks[j].text in _PARTICLES):

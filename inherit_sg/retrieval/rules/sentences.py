@@ -183,11 +183,22 @@ def _only_denial(sentence: list[Word]) -> bool:
 _REPEATING = frozenset({"said", "mean", "meant", "asked", "wanted"})
 
 
+# Words that may come before "I meant": apologies and fillers ("oops typo i meant …").
+_BEFORE_REPEATING = _CORRECTION_FILLERS | {"sorry", "actually", "oops", "typo", "correction"}
+
+
 def without_repeating(sentence: list[Word]) -> list[Word]:
     """A first sentence without the "I said" / "I meant" that opens it before the thing
-    ("i said the thermometer not the blood pressure cuff")."""
-    repeating = len(sentence) > 3 and sentence[0].text == "i" and sentence[1].text in _REPEATING
-    return sentence[2:] if repeating and _opens_phrase(sentence[2]) else sentence
+    ("i said the thermometer not the blood pressure cuff", "sorry i meant the
+    thermometer", "oops typo i meant mouse pad")."""
+    i = 0
+    while i < len(sentence) and sentence[i].text in _BEFORE_REPEATING:
+        i += 1
+    rest = sentence[i:]
+    repeating = len(rest) > 2 and rest[0].text == "i" and rest[1].text in _REPEATING
+    if repeating and (_opens_phrase(rest[2]) or rest[2].pos in ("NOUN", "ADJ", "PROPN")):
+        return rest[2:]
+    return sentence
 
 
 def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
@@ -269,6 +280,41 @@ def _aside(part: list[Word]) -> bool:
     )  # "No towels required."
 
 
+# How a speaker opens by saying what they do not know or mind ("no idea which aisle but
+# find the batteries", "it doesn't matter which colour, just get a pen").
+_UNSURE_OPENERS = (
+    ("no", "idea"), ("no", "clue"), ("not", "sure"), ("i", "am", "not", "sure"),
+    ("i", "do", "not", "know"), ("dunno",), ("it", "does", "not", "matter"),
+    ("no", "worries"), ("on", "second", "thought"),
+)  # fmt: skip
+# Nouns of a request that name no thing ("can you have a look").
+_LIGHT_NOUNS = frozenset({"look", "try", "go", "check", "hand", "favour", "favor", "sec", "minute"})
+# Words after which the request itself begins.
+_REQUEST_RESUMES = frozenset({"but", "just", "so", ","})
+
+
+def _after_unsure(sentence: list[Word]) -> int | None:
+    """Where the request starts after an opening that says what the speaker does not
+    know or mind, up to "but" / "just" / "so" / a comma ("not sure if it's still there
+    but check the counter for my watch"); "on second thought" needs none. None when the
+    sentence opens otherwise or nothing follows."""
+    texts = [w.text for w in sentence]
+    opener = next((o for o in _UNSURE_OPENERS if tuple(texts[: len(o)]) == o), None)
+    if opener is None:
+        return None
+    if opener == ("on", "second", "thought"):
+        start = 3 + (texts[3:4] == [","])
+        return start if start < len(sentence) else None
+    for j in range(len(opener), len(sentence) - 1):
+        if texts[j] in _REQUEST_RESUMES:
+            rest = sentence[j + 1 :]
+            # the request names its own thing ("… but find the batteries"), not one the
+            # opening named ("no idea where the tv remote went, help", "… can you find it")
+            own = any(w.pos in ("NOUN", "PROPN") and w.text not in _LIGHT_NOUNS for w in rest)
+            return j + 1 if own and not any(w.text in IT_WORDS for w in rest) else None
+    return None
+
+
 def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
     """The request without the asides that open it, as a sentence of their own ("No
     signature needed. Take the post trolley …") or before a comma ("No price changes
@@ -276,7 +322,10 @@ def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
     out: list[list[Word]] = []
     for n, sentence in enumerate(sentences):
         cut = next((j for j, w in enumerate(sentence) if w is COMMA), None)
-        if cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
+        unsure = _after_unsure(sentence)
+        if unsure is not None:
+            out.append(sentence[unsure:])
+        elif cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
             out.append(sentence[cut + 1 :])
         elif n + 1 < len(sentences) and _aside(sentence):
             continue
