@@ -193,6 +193,29 @@ def _thing_not_there(match: re.Match[str]) -> str:
     return f"the {match.group(1)} that is not {match.group(2)} "
 
 
+# "the glass vase is NOT the one", "the car keys aren't the ones I want": a thing said not
+# to be the one meant is a thing ruled out ("not the glass vase")
+_NOT_THE_ONE = re.compile(
+    r"(^|[.,;!?] *)(the (?:\w+ ){0,3}?\w+) (?:is|are)(?: not|n't|n’t|nt) the ones?"
+    r"(?: (?:i|we) (?:want|need|mean|meant|asked for))?\b",
+    re.IGNORECASE,
+)
+# "don't grab the one on top, grab the one underneath": an errand denied, then the same
+# errand for another thing
+_NOT_THIS_ERRAND = re.compile(
+    r"\b(?:do not|don't|don’t|dont) (grab|get|take|bring|use|fetch|pick) "
+    r"((?:\w+ ){0,6}?\w+),? (?:just |but )?\1\b",
+    re.IGNORECASE,
+)
+
+
+def not_the_one(text: str) -> str:
+    """ "the glass vase is not the one" as "not the glass vase", and "don't grab the one on
+    top, grab …" as "not the one on top, grab …"; other text as is."""
+    text = _NOT_THE_ONE.sub(lambda m: f"{m.group(1)}not {m.group(2)}", text)
+    return _NOT_THIS_ERRAND.sub(lambda m: f"not {m.group(2)}, {m.group(1)}", text)
+
+
 def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
     """Sentences of :class:`Word` s (clause punctuation as ``","``; empty sentences
     dropped), and the spelling corrections made first. ``text`` must have passed
@@ -200,7 +223,7 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
     from inherit_sg.retrieval.rules.spelling import correct_spelling
 
     corrected, fixes = correct_spelling(normalise(text))
-    doc = analyse(absent_from(negated_position(where_it_goes(corrected))))
+    doc = analyse(absent_from(negated_position(not_the_one(where_it_goes(corrected)))))
     out: list[list[Word]] = []
     for sent in doc.sents:
         words: list[Word] = []
