@@ -1,6 +1,6 @@
 """Offline parser on the probe request sets: target agreement, negations and crashes.
 
-The sets in ``bench/data/probe_requests/`` were written here in nineteen styles people use
+The sets in ``bench/data/probe_requests/`` were written here in twenty styles people use
 (grounding-dataset descriptions, robot requests, negations and traps that look like
 negations, short speaker-relative utterances, long multi-sentence descriptions,
 house-scale requests with real room names, remote embodied instructions in real homes,
@@ -9,7 +9,7 @@ speech-recognition transcripts, chat messages, staff requests in non-home buildi
 ScanRefer-style and Nr3D-style grounding text, Sr3D / Multi3DRefer / ScanQA-style spatial
 references, spoken requests to a home-care robot, chores with the object embedded in a task, grounding
 descriptions typed fast with typos and the landmark named first, spoken and typed corrections and
-follow-ups). A parse that runs longer than
+follow-ups, ScanRefer descriptions in their natural proportions). A parse that runs longer than
 :data:`PARSE_LIMIT_S` counts as a crash (reported as ``HANG``). Each line names the target's head noun
 (``target``, or null where the person names no object) and whether something is ruled
 out (``negated``, where annotated).
