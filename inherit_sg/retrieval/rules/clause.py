@@ -690,14 +690,7 @@ class ClauseParser(Grammar):
             return False
         if not any(t.lemma in _SEARCH_VERBS for t in self.toks[: self.i]):
             return False
-        thing.constraints.append(
-            RelationConstraint(
-                predicate="near", landmark=head.landmark(), weight=self.weight("relation"),
-                text=f"near {head.noun}",
-            )
-        )  # fmt: skip
-        self.notes.append(f"'{thing.noun}' is searched for at the {head.noun}")
-        out.head = thing
+        self._sought_near_head(out, thing, "is searched for")
         return True
 
     def _attach_postmodifiers(self, head: NP) -> None:
