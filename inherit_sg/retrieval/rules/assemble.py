@@ -175,7 +175,9 @@ def assemble(
     elif not functions and head.kind == OBJECT and not head.known and head.words:
         # an unknown head that is a purpose noun: "I want a long soak" seeks a bathtub
         functions = list(_guess_function(head.words[-1:], notes))
-        if functions:
+        if functions and clause.fetched:
+            notes.append(f"{head.noun!r} is fetched: the thing itself is sought")
+        elif functions:
             head.kind, head.labels = GENERIC, []
             own = [c for c in own if c.kind != "attribute"]
     head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]

@@ -95,6 +95,10 @@ _COUNTING = frozenset({"counting", "starting", "going", "numbering", "beginning"
 _TRANSITIVE_VIEW = frozenset({"enter", "pass", "reach", "climb", "approach"})
 
 
+# Words that point at a thing shown or named before ("not that chair").
+_POINTING = frozenset({"that", "this", "those", "these"})
+
+
 @dataclass
 class Clause:
     """What the top level found."""
@@ -111,7 +115,12 @@ class Clause:
     head_negated: bool = False  # "not the sofa …": replaced by a positive phrase that follows
     # the places the negated head was given ("not the toilet in the WC, …")
     negated_head_places: list[Constraint] = field(default_factory=list)
+    # the negated head was pointed at ("not that chair, …"): the thing shown before
+    head_pointed: bool = False
     viewpoint: Viewpoint | None = None
+    # the head is the object of a verb of fetching ("bring the juice"): a thing to carry,
+    # even where its noun also names a purpose
+    fetched: bool = False
 
 
 def _as_placements(head: NP, cons: list[Constraint]) -> list[Constraint]:
@@ -138,6 +147,16 @@ def _same_kind(out: Clause, np: NP) -> bool:
         return False
     details = [c for c in head.constraints if c.kind != "label"]
     return bool(details or head.places or out.negated_head_places)
+
+
+def _pointed_again(out: Clause, np: NP) -> bool:
+    """Whether a phrase names again the kind of a negated head that was pointed at ("not
+    this bottle, that bottle")."""
+    head = out.head
+    return (
+        out.head_pointed and head is not None and np.kind == OBJECT
+        and bool(np.labels) and set(np.labels) == set(head.labels)
+    )  # fmt: skip
 
 
 def turned_round(other: NP) -> list[Constraint]:
@@ -735,7 +754,7 @@ class ClauseParser(Grammar):
             if np.kind == OBJECT and np.labels and not _same_kind(out, np):
                 self._exclude(out, out.head)  # "not the sofa but the armchair"
                 out.head, out.head_negated = None, False
-            elif np.kind == ONE or _same_kind(out, np):
+            elif np.kind == ONE or _same_kind(out, np) or _pointed_again(out, np):
                 self._contrast_one(out, np)
                 return
         own_places = [replace(c, negated=not c.negated) if flip else c for c in np.places]
@@ -749,8 +768,8 @@ class ClauseParser(Grammar):
         if np.kind in (ROOM, AREA) and (refine or neg or out.head is not None):
             out.places.append(self._place(np, neg))
             return
-        if np.kind == ANAPHOR and neg and out.head is None:
-            out.exclude_previous = True
+        if np.kind == ANAPHOR and neg and (out.head is None or out.head.kind == ONE):
+            out.exclude_previous = True  # "not that one", "the one on the left, not that one"
             return
         if out.head is None:
             if self._stray_object(out, np, prev, start):
@@ -761,6 +780,7 @@ class ClauseParser(Grammar):
             out.head = np
             out.head_negated = neg and np.kind == OBJECT and bool(np.labels)
             out.negated_head_places = own_places if out.head_negated else []
+            out.head_pointed = out.head_negated and self.toks[start].text in _POINTING
             return
         if self._replaces_head(out, np, neg) or self._asked_for(out, np, neg, prev, start):
             return
@@ -781,6 +801,11 @@ class ClauseParser(Grammar):
         one's details are negated."""
         old = out.head
         assert old is not None
+        details = [c for c in old.constraints if c.kind != "label"]
+        pointed = out.head_pointed and not (old.other or np.other)  # "the other one" says it
+        if pointed and not details and not out.negated_head_places:
+            out.exclude_previous = True  # "not that chair, the one by the window"
+            self.notes.append(f"'not that {old.noun}': the one shown before is ruled out")
         old.constraints = [replace(c, negated=not c.negated) for c in old.constraints] + (
             np.constraints
         )

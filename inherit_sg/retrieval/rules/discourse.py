@@ -51,8 +51,11 @@ def _is_request(sentence: list[Word]) -> bool:
         return False  # "can I …" asks leave, it gives no errand
     # after "can you" the verb is the errand however spaCy attached a run-on's parts
     # a run-on split off a statement keeps the dependency of the whole ("so bring …": conj)
-    split_off = verb.dep in ("conj", "dep", "ccomp", "parataxis", "advcl")
+    split_off = verb.dep in ("conj", "dep", "ccomp", "parataxis", "advcl", "xcomp")
     return verb.pos == "VERB" and verb.tag == "VB" and (verb.dep == "ROOT" or modal or split_off)
+
+
+_FINITE_OR_MODAL = FINITE | {"MD"}  # "it won't turn on": a modal is finite too
 
 
 def _is_statement(sentence: list[Word]) -> bool:
@@ -66,7 +69,7 @@ def _is_statement(sentence: list[Word]) -> bool:
     finite = any(
         w.pos in ("VERB", "AUX") and w.tag in FINITE and w.dep in _MAIN_VERB for w in sentence
     ) or (  # "the coffee machine isn't working": the finite word is the root's auxiliary
-        any(w.pos == "AUX" and w.tag in FINITE and w.dep == "aux" for w in sentence)
+        any(w.pos == "AUX" and w.tag in _FINITE_OR_MODAL and w.dep == "aux" for w in sentence)
         and any(w.dep == "ROOT" and w.pos == "VERB" for w in sentence)
     )  # not "The plant that we never water.": a phrase with a relative clause
     return finite and not _is_request(sentence)
@@ -79,8 +82,10 @@ def statement_then_request(
     by the window.") is followed by a request for another named thing ("Can you check
     the router?", "Bring me the chair next to it."): the request's object is sought."""
     head = clause.head
-    if head is None or head.kind != OBJECT or not asks_for_object(more):
+    if head is None or not asks_for_object(more):
         return False
+    if head.kind != OBJECT and not (head.kind == ANAPHOR and not head.labels):
+        return False  # "it won't turn on, bring me a spare battery": "it" is left as said
     if clause.head_negated and not states_absence(first):
         return False
     assert more.head is not None

@@ -50,6 +50,7 @@ from inherit_sg.retrieval.rules.sentences import (
     comma_after_denied_thing,
     denial_then_choice,
     denies_first,
+    fetches_particular,
     place_after_thing,
     prepare,
     without_repeating,
@@ -336,6 +337,8 @@ def parse_uncached(text: str) -> ParsedQuery:
                 and more.head is not None
                 and same_thing(clause.head, more.head)
             )
+    if clause.head is not None and clause.head.kind == OBJECT and not clause.head.known:
+        clause.fetched = any(fetches_particular(s, clause.head.noun) for s in sentences)
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads

@@ -38,6 +38,14 @@ def _problem_subjects() -> frozenset[str]:
 _MODIFIERS = frozenset({"amod", "compound", "nmod", "det", "poss", "nummod"})
 
 
+def _denied(words: list[Word], k: int) -> bool:
+    """Whether word ``k`` is a state the sentence denies ("I'm not hungry", "not very
+    cold"): "not" / "never" just before it, or before one adverb before it."""
+    if k > 0 and words[k - 1].lemma in ("not", "never"):
+        return True
+    return k > 1 and words[k - 2].lemma in ("not", "never") and words[k - 1].pos == "ADV"
+
+
 def _terms(words: list[Word], heads_only: bool) -> set[str]:
     """Words and their lemmas (only those that do not modify a noun when ``heads_only``:
     "the dark cabinets" states nothing dark, nor does "dark brown", a shade), and every
@@ -123,9 +131,11 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     noun_subject = any(w.dep == "nsubj" and w.pos in ("NOUN", "PROPN") for w in words) or any(
         w.pos == "NOUN" and object_vocab.canonical_label(w.text) for w in words
     )  # "I left the tap running": the tap's state, not the speaker's
-    loose_states = (
-        _terms([w for w in words if w.pos != "VERB"], heads_only=True) if noun_subject else states
-    )
+    # a state the sentence denies is no problem of the speaker's ("I'm not hungry"); a
+    # problem about a thing may lie in the denial itself ("I don't know what time it is")
+    kept = [w for k, w in enumerate(words) if not _denied(words, k)]
+    loose_states = _terms([w for w in kept if w.pos != "VERB"] if noun_subject else kept,
+                          heads_only=True)  # fmt: skip
     loose: tuple[str, tuple[str, ...]] | None = None
     for problem in problems():
         if not states.intersection(problem.states):

@@ -44,9 +44,114 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
+    sentences = [_errand_of_caution(sentence) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
-    return _without_asides(_without_letter_frame(sentences))
+    return _without_cautions(_without_asides(_without_letter_frame(sentences)))
+
+
+# Verbs of choosing or fetching: "don't bring the red bag" rules a thing out; any other
+# verb after "don't" ("don't wake the baby", "don't drop the vase") is a caution.
+_CHOOSING = frozenset({"want", "need", "like", "use", "mean", "choose", "pick"})
+# Words that open the errand a caution goes with ("… when you grab the diaper bag").
+_WHEN = frozenset({"when", "after", "before", "while", "as", "once"})
+_ERRAND_OF_CAUTION = frozenset({"move", "carry", "put", "clean", "pick", "bring", "get", "grab",
+                                "fetch", "take"})  # fmt: skip
+
+
+def _caution_verb(sentence: list[Word]) -> int | None:
+    """Where the verb of a caution that opens ``sentence`` is ("don't wake the baby",
+    "please never drop the vase"), or None when it opens otherwise or the verb chooses
+    or fetches ("don't bring the red bag" rules the red bag out)."""
+    i = 1 if sentence and sentence[0].text == "please" else 0
+    texts = [w.text for w in sentence]
+    if texts[i : i + 2] == ["do", "not"]:
+        i += 2
+    elif texts[i : i + 1] == ["never"]:
+        i += 1
+    else:
+        return None
+    if i >= len(sentence) or sentence[i].pos not in ("VERB", "AUX"):
+        return None
+    if sentence[i].lemma in _CHOOSING or sentence[i].lemma in FETCH_VERBS:
+        return None
+    return i
+
+
+def _errand_of_caution(sentence: list[Word]) -> list[Word]:
+    """A caution said with the errand it goes with ("don't wake the baby when you grab
+    the diaper bag", "don't forget to close the fridge after you take the juice") as the
+    errand alone; "it" in the errand is the caution's thing ("please don't drop the vase
+    when you bring it" → "bring the vase")."""
+    verb = _caution_verb(sentence)
+    if verb is None:
+        return sentence
+    for j in range(verb + 1, len(sentence) - 2):
+        if sentence[j].text not in _WHEN or sentence[j + 1].text not in ("you", "u", "i"):
+            continue
+        k = j + 2
+        while k < len(sentence) and sentence[k].pos == "ADV":
+            k += 1
+        if k >= len(sentence) or sentence[k].lemma not in _ERRAND_OF_CAUTION:
+            return sentence
+        errand = sentence[k:]
+        if len(errand) > 1 and errand[1].text in IT_WORDS:
+            thing = _thing_of(sentence[verb + 1 : j])
+            if not thing:
+                return sentence
+            return [errand[0], *thing, *errand[2:]]
+        return errand
+    return sentence
+
+
+def _thing_of(words: list[Word]) -> list[Word]:
+    """The noun phrase a caution's verb takes ("the vase" of "drop the vase"): from its
+    first determiner, adjective or noun to its last noun."""
+    start = next((k for k, w in enumerate(words) if w.pos in ("DET", "ADJ", "NOUN")), None)
+    if start is None:
+        return []
+    end = max((k for k, w in enumerate(words) if w.pos in ("NOUN", "PROPN")), default=-1)
+    return words[start : end + 1] if end >= start else []
+
+
+def _without_cautions(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without a caution before an errand about another thing ("don't wake
+    the baby, just get her bottle", "don't be shy, bring the whole box"): the caution
+    rules nothing out. Kept when the errand names the caution's thing again or says
+    "one" ("don't touch the blue mug, take the red one")."""
+    out: list[list[Word]] = []
+    for n, sentence in enumerate(sentences):
+        verb = _caution_verb(sentence)
+        nxt = sentences[n + 1] if n + 1 < len(sentences) else []
+        if verb is not None and nxt and _errand_of_another(nxt, sentence[verb + 1 :]):
+            continue
+        out.append(sentence)
+    return out
+
+
+def _errand_of_another(errand: list[Word], cautioned: list[Word]) -> bool:
+    """Whether ``errand`` fetches a thing other than the ``cautioned`` words name."""
+    i = 0
+    while i < len(errand) and (errand[i].text in _ERRAND_LINKS or errand[i].text == ","):
+        i += 1
+    if i >= len(errand) or errand[i].lemma not in FETCH_VERBS:
+        return False
+    if any(w.text in ("one", "ones") for w in errand):
+        return False
+    head = _first_head(errand[i + 1 :])
+    return head is not None and head != _first_head(cautioned)
+
+
+def _first_head(words: list[Word]) -> str | None:
+    """The lemma of the last noun of the first run of nouns in ``words`` ("monitor" of
+    "the baby monitor from the nursery")."""
+    head = None
+    for w in words:
+        if w.pos in ("NOUN", "PROPN"):
+            head = w.lemma
+        elif head is not None:
+            break
+    return head
 
 
 # Verbs between a place put first and the thing it places ("to the right of it is a
@@ -201,6 +306,34 @@ def without_repeating(sentence: list[Word]) -> list[Word]:
     return sentence
 
 
+# Verbs whose object is a thing to carry to the speaker ("bring the juice").
+FETCH_VERBS = frozenset({"bring", "get", "grab", "fetch", "pass", "hand", "take"})
+# Words before a noun that make it one particular thing ("the juice", "my tea").
+PARTICULAR = frozenset({"the", "my", "your", "our", "his", "her", "their", "this", "that"})
+
+
+def fetches_particular(sentence: list[Word], noun: str) -> bool:
+    """Whether ``sentence`` asks to fetch one particular ``noun`` ("bring me the juice",
+    "so grab the tea", "get a soda from the fridge"), not a kind of thing for a purpose
+    ("get a drink"): a verb of fetching, then "the" / a possessive, or a source after."""
+    last = noun.split()[-1] if noun.strip() else ""
+    at = next((k for k, w in enumerate(sentence) if w.text == last), None)
+    if at is None:
+        return False
+    k = at - len(noun.split())
+    while (
+        k >= 0 and sentence[k].pos in ("ADJ", "NUM", "ADV") and sentence[k].text not in PARTICULAR
+    ):
+        k -= 1
+    opener = sentence[k].text if k >= 0 else ""
+    k -= 1
+    if k >= 0 and sentence[k].text in ("me", "us"):
+        k -= 1
+    if k < 0 or sentence[k].lemma not in FETCH_VERBS:
+        return False
+    return opener in PARTICULAR or any(w.text == "from" for w in sentence[at + 1 :])
+
+
 def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
     """A statement run on into a request with no stop between them ("the wifi is down
     can you check the router", as speech is transcribed) as two sentences: split before
@@ -212,9 +345,20 @@ def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
         before = sentence[:j]
         if before[0].text in QUESTION_OPENERS or before[-1].text in QUESTION_OPENERS:
             continue  # "where can you …", "the place where can you …"
-        if any(w.pos in ("VERB", "AUX") and w.tag in FINITE for w in before):
+        if _has_clause(before):
             return [before, sentence[j:]]
     return _split_before_errand(sentence)
+
+
+def _has_clause(words: list[Word]) -> bool:
+    """Whether ``words`` hold a clause of their own: a finite verb, or a modal after its
+    subject ("it won't turn on", "the kids can't reach the cereal"; not "can you")."""
+    for k, w in enumerate(words):
+        if w.pos in ("VERB", "AUX") and w.tag in FINITE:
+            return True
+        if w.tag == "MD" and k > 0 and words[k - 1].dep == "nsubj" and words[k - 1].text != "you":
+            return True
+    return False
 
 
 # Verbs of an errand that may follow a statement with no stop ("there's no milk left so
@@ -244,7 +388,7 @@ def _split_before_errand(sentence: list[Word]) -> list[list[Word]]:
         before = sentence[:k]
         if before[0].text in QUESTION_OPENERS or any(w.lemma in _ERRAND_VERBS for w in before):
             continue  # "don't bring the red bag bring the black one": one errand, corrected
-        if any(w.pos in ("VERB", "AUX") and w.tag in FINITE for w in before):
+        if _has_clause(before):
             return [before, sentence[k:]]
     return [sentence]
 

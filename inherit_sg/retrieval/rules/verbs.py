@@ -27,6 +27,7 @@ from inherit_sg.retrieval.rules.functions import (
     open_function,
 )
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ROOM
+from inherit_sg.retrieval.rules.sentences import FETCH_VERBS, PARTICULAR
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab.lexicon import lexicon
 
@@ -126,6 +127,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         g.advance()
     while (particle := g.peek()) is not None and particle.tag == "RP" and g.np_start(1):
         g.advance()  # "wipe down the kitchen island", "pick up the book"
+    if tok.lemma in FETCH_VERBS and g.text_at() in ("me", "us") and g.np_start(1):
+        g.advance()  # "bring me the juice": the thing comes after whom it is for
     head: NP | None = None
     obj: NP | None = None
     nxt = g.peek()
@@ -227,6 +230,17 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
+    if sense is not None and _fetches_particular(tok, obj, words):
+        # "bring the juice", "grab me a soda from the fridge": a thing to carry; what
+        # it is for only hedges where to look
+        assert obj is not None
+        g.notes.append(f"'{tok.text} {obj.noun}': a thing fetched, the object is the target")
+        purpose = match_function(None, obj.words[-1:])  # "soda" → drink; not "pass" → enter
+        if purpose is None:
+            return [], obj
+        made = FunctionConstraint(function=purpose[0], labels=purpose[1],
+                                  weight=weighted("function", "hedge"), text=obj.noun)  # fmt: skip
+        return [made], obj
     function, labels = sense if sense is not None else (open_function(verb, words), ())
     if sense is None:
         g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
@@ -238,6 +252,18 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     where = [c for c in obj.constraints if _places_target(c, obj)] if obj is not None else []
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
+
+
+def _fetches_particular(tok: Tok, obj: NP | None, words: list[str]) -> bool:
+    """Whether a verb of fetching takes one particular thing the vocabulary does not
+    name ("bring the juice", "grab me a soda from the fridge"), not a kind of thing for
+    a purpose ("get a drink"): a definite or possessive word before it, or a source."""
+    if tok.lemma not in FETCH_VERBS or obj is None or obj.kind != OBJECT or obj.known:
+        return False
+    if not obj.words or not obj.labels:
+        return False
+    opened = next((w for w in words if w not in ("me", "us", "him", "her", "them")), "")
+    return opened in PARTICULAR or "from" in words
 
 
 def _destination_relation(obj: NP | None) -> RelationConstraint | None:
