@@ -44,7 +44,7 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
-    sentences = [_errand_of_caution(sentence) for sentence in sentences]
+    sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
     return _without_cautions(_without_asides(_without_letter_frame(sentences)))
@@ -57,6 +57,27 @@ _CHOOSING = frozenset({"want", "need", "like", "use", "mean", "choose", "pick"})
 _WHEN = frozenset({"when", "after", "before", "while", "as", "once"})
 _ERRAND_OF_CAUTION = frozenset({"move", "carry", "put", "clean", "pick", "bring", "get", "grab",
                                 "fetch", "take"})  # fmt: skip
+
+
+# Words that ask for a thing in "what can I use to …", "anything I could use to …".
+_ASKING_WORDS = frozenset({"what", "anything", "something", "is", "there", "can", "could",
+                           "should", "would", "might", "do", "i", "we", "one", "you"})  # fmt: skip
+SOMETHING = Word("something", "something", "PRON", "NN")
+
+
+def _instrument_asked(sentence: list[Word]) -> list[Word]:
+    """ "what can I use to open this bottle of wine", "is there anything I could use to
+    reach the top shelf" as "something to open this bottle of wine": the thing used is
+    sought, not the thing it acts on."""
+    for k in range(1, min(len(sentence) - 2, 7)):
+        if sentence[k].lemma != "use" or sentence[k + 1].text != "to":
+            continue
+        if sentence[k + 2].tag != "VB" or not all(w.text in _ASKING_WORDS for w in sentence[:k]):
+            return sentence
+        if not any(w.text in ("what", "anything", "something") for w in sentence[:k]):
+            return sentence
+        return [SOMETHING, *sentence[k + 1 :]]
+    return sentence
 
 
 def _caution_verb(sentence: list[Word]) -> int | None:

@@ -427,6 +427,12 @@ def _past_verb_of_person(words: list[Word], i: int) -> bool:
     )
 
 
+def _verb_after_to(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` is, by spaCy, a verb after "to" ("something to open a bottle
+    with", "to clean the oven"), though the vocabulary knows it as an adjective."""
+    return i > 0 and words[i - 1].tag == "TO" and words[i].tag == "VB" and words[i].pos == "VERB"
+
+
 def _verb_of_subject(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is, by spaCy, the finite verb of the noun just before it ("the
     plant blocks the view", "the lamp lights up the desk", "the cable runs along the
@@ -471,6 +477,9 @@ def tag(words: list[Word]) -> list[Tok]:
             if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
                 del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
                 tok.tags["filler"] = words[i].text
+            if n == 1 and _verb_after_to(words, i) and tok.has("adj") and not tok.has("fverb"):
+                tok.tags = {"overb": words[i].lemma}  # "something to open a bottle with"
+                tok.pos, tok.tag = "VERB", "VB"
             if n == 1:
                 if words[i].text in _ONE_WORDS:
                     tok.tags["one"] = True

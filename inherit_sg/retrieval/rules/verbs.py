@@ -235,10 +235,10 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         # it is for only hedges where to look
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}': a thing fetched, the object is the target")
-        purpose = match_function(None, obj.words[-1:])  # "soda" → drink; not "pass" → enter
-        if purpose is None:
+        serves = match_function(None, obj.words[-1:])  # "soda" → drink; not "pass" → enter
+        if serves is None:
             return [], obj
-        made = FunctionConstraint(function=purpose[0], labels=purpose[1],
+        made = FunctionConstraint(function=serves[0], labels=serves[1],
                                   weight=weighted("function", "hedge"), text=obj.noun)  # fmt: skip
         return [made], obj
     function, labels = sense if sense is not None else (open_function(verb, words), ())
