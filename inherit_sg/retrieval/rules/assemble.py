@@ -171,7 +171,10 @@ def assemble(
     described = any(isinstance(c, RelationConstraint) and not c.negated for c in own)
     if not functions and not head.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
         # "the little yellow thing on the desk" is described, not asked for by purpose
-        functions = [] if described else list(_guess_function(words, notes))
+        # the head's own word names no purpose ("the closest thing to the door" is no
+        # "thing" to store)
+        said = [w for w in words if w not in head.words]
+        functions = [] if described else list(_guess_function(said, notes))
     elif not functions and head.kind == OBJECT and not head.known and head.words:
         # an unknown head that is a purpose noun: "I want a long soak" seeks a bathtub
         functions = list(_guess_function(head.words[-1:], notes))

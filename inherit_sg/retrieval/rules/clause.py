@@ -149,6 +149,16 @@ def _same_kind(out: Clause, np: NP) -> bool:
     return bool(details or head.places or out.negated_head_places)
 
 
+def _acts_on(out: Clause, thing: NP) -> bool:
+    """Whether the head is a person and a verb's object names a thing ("the kids can't
+    reach the cereal", "where did the kids put the football"): the thing is sought."""
+    head = out.head
+    return (
+        head is not None and not out.head_negated and head.labels == ["person"]
+        and thing.kind == OBJECT and bool(thing.labels) and thing.labels != ["person"]
+    )  # fmt: skip
+
+
 def _pointed_again(out: Clause, np: NP) -> bool:
     """Whether a phrase names again the kind of a negated head that was pointed at ("not
     this bottle, that bottle")."""
@@ -314,6 +324,11 @@ class ClauseParser(Grammar):
                     elif out.head is None:
                         out.head = candidate
                         out.head_negated = candidate.excluded
+                    elif _acts_on(out, candidate):
+                        # "where did the kids put the football": who acted is not sought
+                        self.notes.append(f"{candidate.noun!r} is the target; "
+                                          f"{out.head.noun!r} acts on it")  # fmt: skip
+                        out.head = candidate
                     elif not (
                         self._replaces_head(out, candidate, False)
                         or self._next_errand(out, candidate, False, verb_at)
@@ -790,6 +805,11 @@ class ClauseParser(Grammar):
         while j >= 0 and (self.toks[j].tag == "RP" or self.toks[j].text in _PARTICLES):
             j -= 1  # "grab out the …"
         if self._verb_of_head(out, np, neg, j) or self._next_errand(out, np, neg, j):
+            return
+        if not neg and j >= 0 and self.toks[j].pos == "VERB" and _acts_on(out, np):
+            assert out.head is not None  # "where did the kids put the football"
+            self.notes.append(f"{np.noun!r} is the target; {out.head.noun!r} acts on it")
+            out.head = np
             return
         definite = self.toks[start].text in ("the", "that", "this")
         coordinated = prev is not None and prev.has("and", "or")
