@@ -139,34 +139,25 @@ def _as_placements(head: NP, cons: list[Constraint]) -> list[Constraint]:
     ]
 
 
+def _names_kind_of(np: NP, head: NP) -> bool:
+    """Whether ``np`` names a thing of the kind ``head`` names."""
+    return np.kind == OBJECT and bool(np.labels) and set(np.labels) == set(head.labels)
+
+
 def _same_kind(out: Clause, np: NP) -> bool:
     """Whether a contrasting phrase names the kind of the negated head again ("not the
     toilet in the WC, the other toilet"), the head having details to negate."""
     head = out.head
-    if head is None or np.kind != OBJECT or not np.labels or set(np.labels) != set(head.labels):
+    if head is None or not _names_kind_of(np, head):
         return False
     details = [c for c in head.constraints if c.kind != "label"]
     return bool(details or head.places or out.negated_head_places)
 
 
-def _acts_on(out: Clause, thing: NP) -> bool:
-    """Whether the head is a person and a verb's object names a thing ("the kids can't
-    reach the cereal", "where did the kids put the football"): the thing is sought."""
-    head = out.head
-    return (
-        head is not None and not out.head_negated and head.labels == ["person"]
-        and thing.kind == OBJECT and bool(thing.labels) and thing.labels != ["person"]
-    )  # fmt: skip
-
-
 def _pointed_again(out: Clause, np: NP) -> bool:
     """Whether a phrase names again the kind of a negated head that was pointed at ("not
     this bottle, that bottle")."""
-    head = out.head
-    return (
-        out.head_pointed and head is not None and np.kind == OBJECT
-        and bool(np.labels) and set(np.labels) == set(head.labels)
-    )  # fmt: skip
+    return out.head_pointed and out.head is not None and _names_kind_of(np, out.head)
 
 
 def turned_round(other: NP) -> list[Constraint]:
@@ -324,11 +315,8 @@ class ClauseParser(Grammar):
                     elif out.head is None:
                         out.head = candidate
                         out.head_negated = candidate.excluded
-                    elif _acts_on(out, candidate):
-                        # "where did the kids put the football": who acted is not sought
-                        self.notes.append(f"{candidate.noun!r} is the target; "
-                                          f"{out.head.noun!r} acts on it")  # fmt: skip
-                        out.head = candidate
+                    elif self._acted_on(out, candidate):
+                        pass  # "the kids can't reach the cereal": who acted is not sought
                     elif not (
                         self._replaces_head(out, candidate, False)
                         or self._next_errand(out, candidate, False, verb_at)
@@ -806,14 +794,24 @@ class ClauseParser(Grammar):
             j -= 1  # "grab out the …"
         if self._verb_of_head(out, np, neg, j) or self._next_errand(out, np, neg, j):
             return
-        if not neg and j >= 0 and self.toks[j].pos == "VERB" and _acts_on(out, np):
-            assert out.head is not None  # "where did the kids put the football"
-            self.notes.append(f"{np.noun!r} is the target; {out.head.noun!r} acts on it")
-            out.head = np
-            return
+        if not neg and j >= 0 and self.toks[j].pos == "VERB" and self._acted_on(out, np):
+            return  # "where did the kids put the football"
         definite = self.toks[start].text in ("the", "that", "this")
         coordinated = prev is not None and prev.has("and", "or")
         self._second_phrase(out, np, neg, coordinated, definite=definite)
+
+    def _acted_on(self, out: Clause, thing: NP) -> bool:
+        """A person as the head and a thing a verb acts on ("the kids can't reach the
+        cereal", "where did the kids put the football"): the thing becomes the target.
+        False (nothing changed) otherwise."""
+        head = out.head
+        if head is None or out.head_negated or head.labels != ["person"]:
+            return False
+        if thing.kind != OBJECT or not thing.labels or thing.labels == ["person"]:
+            return False
+        self.notes.append(f"{thing.noun!r} is the target; {head.noun!r} acts on it")
+        out.head = thing
+        return True
 
     def _contrast_one(self, out: Clause, np: NP) -> None:
         """ "not the white cabinet, the brown one", "not the toilet in the WC, the other
@@ -1045,7 +1043,7 @@ class ClauseParser(Grammar):
         assert head is not None
         prev_except = self._after_except
         vague = (GENERIC, GENERIC_AREA, VAGUE)
-        same_kind = np.kind == OBJECT and bool(np.labels) and set(np.labels) == set(head.labels)
+        same_kind = _names_kind_of(np, head)
         if (
             np.kind == ONE
             or (np.kind in (GENERIC, VAGUE) and head.kind in vague)

@@ -62,7 +62,7 @@ _ERRAND_OF_CAUTION = frozenset({"move", "carry", "put", "clean", "pick", "bring"
 # Words that ask for a thing in "what can I use to …", "anything I could use to …".
 _ASKING_WORDS = frozenset({"what", "anything", "something", "is", "there", "can", "could",
                            "should", "would", "might", "do", "i", "we", "one", "you"})  # fmt: skip
-SOMETHING = Word("something", "something", "PRON", "NN")
+_SOMETHING = Word("something", "something", "PRON", "NN")
 
 
 def _instrument_asked(sentence: list[Word]) -> list[Word]:
@@ -76,7 +76,7 @@ def _instrument_asked(sentence: list[Word]) -> list[Word]:
             return sentence
         if not any(w.text in ("what", "anything", "something") for w in sentence[:k]):
             return sentence
-        return [SOMETHING, *sentence[k + 1 :]]
+        return [_SOMETHING, *sentence[k + 1 :]]
     return sentence
 
 
