@@ -6,6 +6,9 @@ thing: the thing of the first sentence, or the other one, is the target.
 - A first sentence that sets the scene with "there is", followed by another thing placed
   by it and described in its own right ("there is a desk in the corner. the chair in
   front of it is black and has wheels."): that thing, the first one its landmark.
+- A later sentence that says which thing is meant ("the recycling bin on its left is
+  the one", "the cabinet we want is the one above the sink"): that thing, whatever the
+  first sentence was.
 - Otherwise a later sentence describes the first sentence's target ("… It is white.").
 """
 
@@ -13,7 +16,13 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from inherit_sg.retrieval.constraints import AttributeConstraint, Constraint, RelationConstraint
+from inherit_sg.retrieval.constraints import (
+    AttributeConstraint,
+    Constraint,
+    Landmark,
+    RelationConstraint,
+    Superlative,
+)
 from inherit_sg.retrieval.rules.clause import Clause
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
@@ -150,8 +159,18 @@ def scene_then_target(
     if not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in later):
         return True  # "pillow on the left side of it, white"
     said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]
-    described = any(isinstance(c, AttributeConstraint) for c in said)
-    return described and later[0].text == "the" and (by_name or _it_in_subject(later))
+    described = any(_describes(c) for c in said)
+    # "the chair …" or, typed, "coffee table in front of it …" (not "a table is beside it")
+    named_first = later[0].text == "the" or later[0].pos in ("NOUN", "PROPN", "ADJ")
+    return described and named_first and (by_name or _it_in_subject(later))
+
+
+def _describes(constraint: Constraint) -> bool:
+    """Whether a constraint describes its thing in its own right: an attribute
+    ("is black") or a thing it has ("has a lamp on it")."""
+    if isinstance(constraint, AttributeConstraint):
+        return True
+    return isinstance(constraint, RelationConstraint) and constraint.predicate == "with"
 
 
 # First words of a sentence that says which thing is meant ("this is …", "it's the …").
@@ -249,22 +268,34 @@ def hand_over(context: Clause, more: Clause) -> None:
 def _point_it_at(head: NP, context: NP) -> None:
     """Relations of ``head`` placed by "it" ("the chair next to it") take the thing the
     sentence before named as their landmark."""
-    head.constraints = _pointed(head.constraints, context)
+    head.constraints = _pointed(head.constraints, context.landmark(), context.noun)
 
 
-def _pointed(constraints: list[Constraint], context: NP) -> list[Constraint]:
+def point_it_at_view(clause: Clause) -> None:
+    """Relations of the target placed by "it" that nothing before explained take the
+    thing the speaker faces or stands at ("when looking at the whiteboard, the door to
+    its right", "facing the sofa, the side table on its left")."""
+    view, head = clause.viewpoint, clause.head
+    if view is None or head is None or not view.landmark.target.labels:
+        return
+    head.constraints = _pointed(head.constraints, view.landmark, view.landmark.target.noun)
+
+
+def _pointed(constraints: list[Constraint], landmark: Landmark, noun: str) -> list[Constraint]:
     """``constraints`` with "it" as a landmark, here or one landmark down ("on the counter
-    next to it"), read as the thing ``context`` names."""
-    landmark = context.landmark()
+    next to it"), read as ``landmark`` (named ``noun``)."""
     out: list[Constraint] = []
     for c in constraints:
         if isinstance(c, RelationConstraint) and c.landmark.target.anaphor:
-            c = replace(c, landmark=landmark, text=c.text.replace(ANAPHOR, context.noun))
+            # "at the end of it closest to the fridge": "it" is one thing, the choice
+            # among several is the target's
+            out += [d for d in c.landmark.constraints if isinstance(d, Superlative)]
+            c = replace(c, landmark=landmark, text=c.text.replace(ANAPHOR, noun))
         elif isinstance(c, RelationConstraint) and any(
             isinstance(d, RelationConstraint) and d.landmark.target.anaphor
             for d in c.landmark.constraints
         ):
-            inner = tuple(_pointed(list(c.landmark.constraints), context))
+            inner = tuple(_pointed(list(c.landmark.constraints), landmark, noun))
             c = replace(c, landmark=replace(c.landmark, constraints=inner))
         out.append(c)
     return out
@@ -277,6 +308,51 @@ def _scope_left_open(context: Clause, more: Clause) -> list[Constraint]:
     assert more.head is not None
     own = {c.kind for c in [*more.places, *more.head.constraints]}
     return [c for c in context.places if c.kind in ("room", "floor") and c.kind not in own]
+
+
+# Verbs of the speaker's choice in "the cabinet we want", "the one I mean".
+_PICKING = frozenset({"want", "need", "mean", "look", "talk", "refer", "after"})
+_CHOOSERS = frozenset({"i", "we", "you"})
+
+
+def picks_out(sentence: list[Word]) -> bool:
+    """Whether a sentence says that the thing it opens with is the one meant: "the
+    recycling bin on its left side is the one", "the kitchen cabinet we want is …",
+    "the lamp by the door is the one I mean" ("this is the one" names nothing new)."""
+    if not sentence or sentence[0].text in _IDENTIFYING:
+        return False
+    if sentence[0].pos not in ("DET", "ADJ", "NOUN", "PROPN"):
+        return False
+    texts = [w.text for w in sentence]
+    for j in range(1, len(sentence) - 2):
+        if sentence[j].lemma == "be" and texts[j + 1 : j + 3] == ["the", "one"]:
+            return any(w.pos in ("NOUN", "PROPN") for w in sentence[:j])
+    for i in range(1, len(sentence) - 1):  # "the cabinet (that) we want …"
+        j = i + 1 if texts[i] in ("that", "which") else i
+        if j + 1 >= len(sentence) or texts[j] not in _CHOOSERS:
+            continue
+        k = j + 2 if texts[j + 1] in ("are", "am") and j + 2 < len(sentence) else j + 1
+        if sentence[k].lemma in _PICKING and _ends_noun(sentence[:i]):
+            return True
+    return False
+
+
+def _ends_noun(words: list[Word]) -> bool:
+    """Whether ``words`` end with a noun ("the trash can": spaCy may read "can" as a
+    verb, the label says it is a noun)."""
+    if words[-1].pos in ("NOUN", "PROPN"):
+        return True
+    return canonical_label(" ".join(w.text for w in words[-2:])) is not None
+
+
+def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
+    """A sentence that runs on after a comma into a part that says which thing is meant
+    ("in the kitchen there's a counter …, the kitchen cabinet we want is the one above
+    the sink, …") as two sentences."""
+    for j, word in enumerate(sentence):
+        if word.text == "," and j >= 2 and picks_out(sentence[j + 1 :]):
+            return [sentence[:j], sentence[j + 1 :]]
+    return [sentence]
 
 
 def same_thing(head: NP, other: NP) -> bool:

@@ -26,8 +26,11 @@ from inherit_sg.retrieval.rules.discourse import (
     asks_for_object,
     description_after_it,
     hand_over,
+    picks_out,
+    point_it_at_view,
     same_thing,
     scene_then_target,
+    split_at_pick,
     split_scene,
     statement_then_request,
     states_absence,
@@ -207,6 +210,16 @@ def _merge_sentence(
     notes.append(f"sentence about {other.noun or other.kind!r} (not the target) ignored")
 
 
+def _another_thing(clause: Clause, more: Clause) -> bool:
+    """Whether a later sentence asks for a named thing other than the target so far."""
+    return (
+        clause.head is not None
+        and asks_for_object(more)
+        and more.head is not None
+        and not same_thing(clause.head, more.head)
+    )
+
+
 def _speaker_situation(sentence: list[Word]) -> bool:
     """Whether a sentence says where the speaker is ("I'm sitting on the edge of the bed
     facing the window", "I am at the counter"): "I" / "we", then within three words a
@@ -265,6 +278,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     if sentences:
         sentences = [*split_scene(sentences[0]), *sentences[1:]]
+    sentences = [part for sentence in sentences for part in split_at_pick(sentence)]
     sentences = prepare(sentences)
     clause = Clause()
     situation = False
@@ -308,6 +322,13 @@ def parse_uncached(text: str) -> ParsedQuery:
                 more.excluded_labels += clause.excluded_labels
             clause = more
             continue
+        if not correcting and picks_out(sentence) and _another_thing(clause, more):
+            # "find the copier first. the recycling bin on its left side is the one"
+            assert more.head is not None
+            notes.append(f"{more.head.noun!r} is said to be the one meant")
+            hand_over(clause, more)
+            clause = more
+            continue
         if (
             not correcting
             and not said_again
@@ -347,6 +368,7 @@ def parse_uncached(text: str) -> ParsedQuery:
         clause.implied.append(unknown_problem)
     if sentences and denies_first(sentences[0]):
         _denied_details(clause, notes)
+    point_it_at_view(clause)
     return assemble(text, clause, refine, notes, [w.text for w in words])
 
 

@@ -11,6 +11,7 @@ request is set aside, and a run-on is split.
 
 from __future__ import annotations
 
+from inherit_sg.retrieval.rules.rewording import only_thing, owner_side, without_noticing_remark
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.objects import canonical_label
 from inherit_sg.vocab.rooms import room_type
@@ -44,8 +45,10 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
+    sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
+    sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
     return _without_cautions(_without_asides(_without_letter_frame(sentences)))
 
@@ -371,6 +374,25 @@ def _split_run_on(sentence: list[Word]) -> list[list[Word]]:
     return _split_before_errand(sentence)
 
 
+def _split_placed_by_it(sentence: list[Word]) -> list[list[Word]]:
+    """Two statements joined by "and", the second placing another thing by "it" ("the
+    sink is in the middle of it and the stove is to its right"), as two sentences: each
+    thing is placed by "it" on its own. Not after "there is …" ("there's a printer and
+    the shredder is to the left of it"), which sets the scene for either thing."""
+    if sentence[0].text == "there":
+        return [sentence]
+    for j in range(2, len(sentence) - 3):
+        if sentence[j].text != "and" or sentence[j + 1].text not in ("the", "a", "an"):
+            continue
+        after = sentence[j + 1 :]
+        verb = next((k for k, w in enumerate(after) if w.tag in FINITE), None)
+        if verb is None or not any(w.pos in ("NOUN", "PROPN") for w in after[:verb]):
+            continue
+        if any(w.text in ("it", "them") for w in after[verb:]) and _has_clause(sentence[:j]):
+            return [sentence[:j], after]
+    return [sentence]
+
+
 def _has_clause(words: list[Word]) -> bool:
     """Whether ``words`` hold a clause of their own: a finite verb, or a modal after its
     subject ("it won't turn on", "the kids can't reach the cereal"; not "can you")."""
@@ -526,9 +548,12 @@ def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
 
 def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
     """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
-    lamp by the window?") without its "not": "is it not X" asks whether it is X."""
+    lamp by the window?", "isn't this the washing machine?") without its "not": "is it
+    not X" asks whether it is X."""
     if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
         return sentence
     if sentence[1].text in IT_WORDS and sentence[2].text == "not":
         return [*sentence[:2], *sentence[3:]]
+    if sentence[1].text == "not" and sentence[2].text in IT_WORDS:
+        return [sentence[0], *sentence[2:]]  # "isn't it the lamp on the nightstand?"
     return sentence

@@ -427,6 +427,23 @@ def _past_verb_of_person(words: list[Word], i: int) -> bool:
     )
 
 
+# Words that may follow "first" when it orders the steps of a request ("go to the kitchen
+# first and then …", "find the copier first.").
+_AFTER_STEP = frozenset({",", "and", "then", "so", "before", "please"})
+
+
+def _first_in_time(words: list[Word], i: int) -> bool:
+    """Whether "first" (or "last"), by spaCy an adverb after the object of a verb, says
+    when a step is done ("find the copier first", "go to the kitchen first and then …"),
+    not which thing of a row ("the chair first from the left")."""
+    word = words[i]
+    if word.text not in ("first", "last") or word.pos != "ADV" or i < 2:
+        return False
+    if i + 1 < len(words) and words[i + 1].text not in _AFTER_STEP:
+        return False
+    return words[i - 1].dep in ("dobj", "pobj") and any(w.pos == "VERB" for w in words[:i])
+
+
 def _verb_after_to(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is, by spaCy, a verb after "to" ("something to open a bottle
     with", "to clean the oven"), though the vocabulary knows it as an adjective."""
@@ -488,6 +505,8 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.tags = {"unk": words[i].text}  # "ice cream scoop", not a cream one
                 if tok.has("dir") and _past_verb_of_person(words, i):
                     del tok.tags["dir"]  # "I left my badge on my desk": a verb, no side
+                if tok.has("ord") and _first_in_time(words, i):
+                    tok.tags = {"adv": words[i].text}  # "find the copier first": a step
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
                 if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":

@@ -1,0 +1,138 @@
+"""Sentences said in a form the grammar does not read, put in the plain form it reads.
+
+- A side that belongs to a thing ("the lamp to its right", "the bin on the desk's left
+  side") is a side of that thing ("to the right of it"), not the speaker's left or
+  right, and not the leftmost of a row.
+- "nothing else on that shelf but the tissue box", "nothing much in this room except a
+  mattress" say that only that thing is there: the thing, in that place ("on that shelf,
+  the tissue box"); the place is not ruled out.
+- A remark on what the speaker did not notice or see ("never noticed it before, but …",
+  "I don't see any other plants, it's the tall one …") rules nothing out: it is dropped.
+"""
+
+from __future__ import annotations
+
+from inherit_sg.retrieval.rules.tokens import COMMA, Word
+
+_SIDE_PREPOSITIONS = frozenset({"to", "on", "at", "by"})
+_SIDES = frozenset({"left", "right"})
+_THE = Word("the", "the", "DET", "DT", "det")
+_SIDE = Word("side", "side", "NOUN", "NN", "pobj")
+_OF = Word("of", "of", "ADP", "IN", "prep")
+_IT = Word("it", "it", "PRON", "PRP", "pobj")
+_OWNER_WORDS = frozenset({"DET", "ADJ", "NOUN", "PROPN", "NUM"})
+
+
+def owner_side(sentence: list[Word]) -> list[Word]:
+    """ "to its right", "on its left side", "to the bed's right" as "to the right side of
+    it" / "… of the bed" (the words come with "its" read as "it is" and the possessive
+    "'s" dropped, see :mod:`inherit_sg.retrieval.rules.tokens`)."""
+    out: list[Word] = []
+    i = 0
+    while i < len(sentence):
+        found = _owned_side_at(sentence, i)
+        if found is None:
+            out.append(sentence[i])
+            i += 1
+            continue
+        owner, side, end = found
+        out += [sentence[i], _THE, side, _SIDE, _OF, *owner]
+        i = end
+    return out
+
+
+def _owned_side_at(sentence: list[Word], i: int) -> tuple[list[Word], Word, int] | None:
+    """The owner, the side word and the end of an owned side that starts with the
+    preposition at ``i``; None when none starts there."""
+    if sentence[i].text not in _SIDE_PREPOSITIONS or sentence[i].pos != "ADP":
+        return None
+    rest = sentence[i + 1 : i + 7]
+    texts = [w.text for w in rest]
+    if texts[:2] == ["it", "is"] and len(rest) > 2 and texts[2] in _SIDES:
+        owner, k = [_IT], 2  # "on its left" (at times read as "on it is left")
+    elif texts[:1] in (["its"], ["their"]) and len(rest) > 1 and texts[1] in _SIDES:
+        owner, k = [_IT if texts[0] == "its" else replace_text(_IT, "them")], 1
+    else:
+        poss = next((j for j, w in enumerate(rest) if w.dep == "poss"), None)
+        if poss is None or poss + 1 >= len(rest) or texts[poss + 1] not in _SIDES:
+            return None
+        if rest[poss].pos not in ("NOUN", "PROPN"):
+            return None  # "to your right", "on my left": the speaker's side
+        if any(w.pos not in _OWNER_WORDS for w in rest[:poss]):
+            return None
+        owner, k = [*rest[:poss], _as_object(rest[poss])], poss + 1
+    side = rest[k]
+    end = i + 1 + k + 1
+    if end < len(sentence) and sentence[end].text == "hand":
+        end += 1
+    if end < len(sentence) and sentence[end].text == "side":
+        end += 1
+    return owner, side, end
+
+
+def _as_object(word: Word) -> Word:
+    """``word``, the owner in "the bed's right", as the object of "of"."""
+    return Word(word.text, word.lemma, word.pos, word.tag, "pobj")
+
+
+def replace_text(word: Word, text: str) -> Word:
+    """``word`` with another surface form and lemma."""
+    return Word(text, text, word.pos, word.tag, word.dep)
+
+
+_NOTHING_ELSE = frozenset({"else", "much"})
+_BUT = frozenset({"but", "except"})
+_CLAUSE_ENDS = frozenset({",", ";", "and"})
+
+
+def only_thing(sentence: list[Word]) -> list[Word]:
+    """ "(there is) nothing else on that shelf but the tissue box, …" as "on that shelf,
+    the tissue box, …": the one thing there, in its place."""
+    texts = [w.text for w in sentence]
+    if "nothing" not in texts:
+        return sentence
+    start = texts.index("nothing")
+    after = start + 1
+    while after < len(texts) and texts[after] in _NOTHING_ELSE:
+        after += 1
+    but = next((j for j in range(after, min(len(texts), after + 9)) if texts[j] in _BUT), None)
+    if but is None or any(t in _CLAUSE_ENDS for t in texts[after:but]):
+        return sentence
+    skip = but + 2 if but + 1 < len(texts) and texts[but + 1] == "for" else but + 1
+    before = sentence[:start]
+    if [w.text for w in before[-2:]] == ["there", "is"]:
+        before = before[:-2]  # "there's nothing … but X": X is there
+    place = sentence[after:but]
+    return [*before, *place, *([COMMA] if place else []), *sentence[skip:]]
+
+
+_NOTICING = frozenset({"see", "notice", "spot", "remember", "know", "realise", "realize"})
+_NEGATIONS = frozenset({"not", "never", "n't"})
+_REMARK_OBJECTS = frozenset({"it", "them", "that", "this", "any", "anything", "another"})
+_REMARK_ENDS = frozenset({",", "but", "so", ";"})
+
+
+def without_noticing_remark(sentence: list[Word]) -> list[Word]:
+    """The sentence without an opening remark on what the speaker did not notice or see
+    ("never noticed it before but there's a small fan …", "I don't see any other
+    plants, it's the tall one …"); unchanged when nothing follows the remark."""
+    texts = [w.text for w in sentence]
+    k = 1 if texts[:1] in (["i"], ["we"]) else 0
+    while k < len(texts) and texts[k] in ("do", "did", "have", "had", "can", "could"):
+        k += 1
+    if k >= len(texts) or texts[k] not in _NEGATIONS:
+        return sentence
+    k += 1
+    if k + 1 >= len(texts) or sentence[k].lemma not in _NOTICING:
+        return sentence
+    if texts[k + 1] not in _REMARK_OBJECTS:
+        return sentence
+    if texts[k + 1] == "any" and texts[k + 2 : k + 3] != ["other"]:
+        return sentence  # "I don't see any towels": the towels are what is missing
+    end = next((j for j in range(k + 2, len(texts)) if texts[j] in _REMARK_ENDS), None)
+    if end is None:
+        return sentence
+    rest = sentence[end + 1 :]
+    while rest and rest[0].text in _REMARK_ENDS:
+        rest = rest[1:]
+    return rest or sentence
