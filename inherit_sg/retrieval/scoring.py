@@ -29,6 +29,8 @@ ranks where it does. ``Sim`` per constraint kind:
 
 from __future__ import annotations
 
+import itertools
+
 import math
 import re
 from collections.abc import Callable, Iterable, Sequence
@@ -793,8 +795,18 @@ def _compared(
     return kept
 
 
+# Landmark candidates kept for a landmark that asks nothing of its thing ("a table
+# without anything on it", "the shelf with nothing on it"): each object found is one.
+ANY_LANDMARKS = 2000
+
+
 def landmark_quality(spec: NodeSpec, ranked: Sequence[Scored], limit: int = 50) -> Landmarks:
-    """Landmark candidates with quality ``S(n) / max S`` in (0, 1], best first."""
+    """Landmark candidates with quality ``S(n) / max S`` in (0, 1], best first; for a
+    landmark with nothing to score ("anything"), every candidate on its floor at 1."""
+    if not spec.scored():
+        return [
+            (c.id, 1.0) for c in itertools.islice((c for c in ranked if c.h_floor), ANY_LANDMARKS)
+        ]
     top = spec.max_score()
     if isinstance(ranked, RankedRows):
         kept = ranked.positive(limit)

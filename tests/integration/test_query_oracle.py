@@ -50,6 +50,7 @@ def engine(map_dir: Path) -> Iterator[QueryEngine]:
         ("the sink under the mirror", "obj:sk1"),
         ("the biggest mug in the kitchen", "obj:m1"),
         ("something to sit on in the bedroom", "obj:c3"),
+        ("a table without anything on it", "obj:t2"),
     ],
 )
 def test_known_answers(engine: QueryEngine, text: str, expected: str) -> None:

@@ -1227,8 +1227,9 @@ class Grammar(Cursor):
         return True
 
     def _empty_of_things(self) -> bool:
-        """ "with nothing (else) on it": the thing is bare, which the map does not record;
-        read and set aside with a note (no negated relation to the thing itself)."""
+        """ "with nothing (else) on it": read and set aside with a note. Whether it rules
+        anything out is a judgement people make both ways (most of the request sets
+        written here say it does not); "without anything on it" is the negated form."""
         k = 2 if self.text_at(1) == "else" else 1
         if self.text_at() != "nothing" or not (
             self.at("prep", k=k) and self.at("anaphor", k=k + 1)

@@ -473,7 +473,12 @@ _UNSURE_OPENERS = (
     ("no", "idea"), ("no", "clue"), ("not", "sure"), ("i", "am", "not", "sure"),
     ("i", "do", "not", "know"), ("dunno",), ("it", "does", "not", "matter"),
     ("no", "worries"), ("on", "second", "thought"),
+    ("can", "not", "miss", "it"), ("you", "can", "not", "miss", "it"),
+    ("it", "is", "not", "hard"), ("it", "is", "not", "difficult"),
 )  # fmt: skip
+# Words that only strengthen an opening ("not 100% sure", "not entirely sure").
+_INTENSIFIERS = frozenset({"100", "%", "percent", "totally", "entirely", "completely", "quite",
+                           "really", "exactly", "too", "so"})  # fmt: skip
 # Nouns of a request that name no thing ("can you have a look").
 _LIGHT_NOUNS = frozenset({"look", "try", "go", "check", "hand", "favour", "favor", "sec", "minute"})
 # Words after which the request itself begins.
@@ -486,20 +491,38 @@ def _after_unsure(sentence: list[Word]) -> int | None:
     but check the counter for my watch"); "on second thought" needs none. None when the
     sentence opens otherwise or nothing follows."""
     texts = [w.text for w in sentence]
-    opener = next((o for o in _UNSURE_OPENERS if tuple(texts[: len(o)]) == o), None)
+    kept = [j for j, t in enumerate(texts) if j == 0 or t not in _INTENSIFIERS]
+    opening = tuple(texts[j] for j in kept)
+    opener = next((o for o in _UNSURE_OPENERS if opening[: len(o)] == o), None)
     if opener is None:
         return None
+    after = kept[len(opener) - 1] + 1  # the first word after the opening
     if opener == ("on", "second", "thought"):
-        start = 3 + (texts[3:4] == [","])
+        start = after + (texts[after : after + 1] == [","])
         return start if start < len(sentence) else None
-    for j in range(len(opener), len(sentence) - 1):
+    for j in range(after, len(sentence) - 1):
         if texts[j] in _REQUEST_RESUMES:
             rest = sentence[j + 1 :]
             # the request names its own thing ("… but find the batteries"), not one the
             # opening named ("no idea where the tv remote went, help", "… can you find it")
             own = any(w.pos in ("NOUN", "PROPN") and w.text not in _LIGHT_NOUNS for w in rest)
-            return j + 1 if own and not any(w.text in IT_WORDS for w in rest) else None
+            return j + 1 if own and not _points_back(rest) else None
     return None
+
+
+def _only_unsure(sentence: list[Word]) -> bool:
+    """Whether a sentence only says what the speaker is unsure of ("not 100% sure.")."""
+    kept = tuple(w.text for j, w in enumerate(sentence) if j == 0 or w.text not in _INTENSIFIERS)
+    return kept in _UNSURE_OPENERS
+
+
+def _points_back(words: list[Word]) -> bool:
+    """Whether ``words`` speak of a thing said before ("can you find it"); "it is the
+    tall lamp" names its own."""
+    return any(
+        w.text in IT_WORDS and not (k + 1 < len(words) and words[k + 1].lemma == "be")
+        for k, w in enumerate(words)
+    )
 
 
 def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
@@ -514,8 +537,8 @@ def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
             out.append(sentence[unsure:])
         elif cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
             out.append(sentence[cut + 1 :])
-        elif n + 1 < len(sentences) and _aside(sentence):
-            continue
+        elif n + 1 < len(sentences) and (_aside(sentence) or _only_unsure(sentence)):
+            continue  # "No signature needed.", "not 100% sure. but …"
         else:
             out.append(sentence)
     return out

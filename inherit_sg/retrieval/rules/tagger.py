@@ -444,6 +444,19 @@ def _first_in_time(words: list[Word], i: int) -> bool:
     return words[i - 1].dep in ("dobj", "pobj") and any(w.pos == "VERB" for w in words[:i])
 
 
+# Readings of a word the vocabulary knows only as a verb of a need.
+_VERBISH = frozenset({"fverb", "overb", "seek", "unk"})
+
+
+def _modifies_noun(words: list[Word], i: int) -> bool:
+    """Whether spaCy reads word ``i`` as a modifier inside a noun phrase (a compound or
+    an adjective) with the noun it modifies after it."""
+    word = words[i]
+    if word.dep not in ("compound", "amod") or word.pos not in ("NOUN", "PROPN", "ADJ"):
+        return False
+    return i + 1 < len(words) and words[i + 1].pos in ("NOUN", "PROPN", "ADJ")
+
+
 def _verb_after_to(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is, by spaCy, a verb after "to" ("something to open a bottle
     with", "to clean the oven"), though the vocabulary knows it as an adjective."""
@@ -509,6 +522,11 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.tags = {"adv": words[i].text}  # "find the copier first": a step
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
+                if tok.has("fverb") and _modifies_noun(words, i) and set(tok.tags) <= _VERBISH:
+                    # "lunch box on the windowsill", "clear plastic storage bin": a word of
+                    # the thing's name or look, not the need "to lunch" / "to clear"
+                    text = words[i].text
+                    tok.tags = {"unk": text} if words[i].pos != "ADJ" else {"adj": ("other", text)}
                 if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
                     # "a set of two curtains": a noun after its determiner, not "set" = placed
                     for key in ("be", "fverb", "overb"):

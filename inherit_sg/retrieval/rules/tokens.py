@@ -171,7 +171,7 @@ _PLACE_WORDS = (
 )
 _ABSENT_FROM = re.compile(
     r"\b(?:there (?:is|are|was|were) no|(?:the|this) room (?:has|contains) no|^no) "
-    r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason)\b)"
+    r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason|no|the|a|an)\b)"
     r"((?:\w+ ){0,3}?\w+) (?:(?:is|are) )?(" + _PLACE_WORDS + r") (?!this\b|these\b|here\b)",
     re.IGNORECASE,
 )
@@ -245,7 +245,7 @@ _IS = Word("is", "be", "AUX", "VBZ", "ROOT")
 
 def _its_is(words: list[Word]) -> list[Word]:
     """ "its" written for "it's" before what describes it ("its tall and stainless
-    steel", "its pretty short"): "it is". Before a noun it stays a possessive ("its
+    steel", "its pretty short") or before "not": "it is". Before a noun it stays a possessive ("its
     wooden legs"), except before a material ("its black metal")."""
     if not any(w.text == "its" for w in words):
         return words
@@ -256,6 +256,9 @@ def _its_is(words: list[Word]) -> list[Word]:
     for i, word in enumerate(words):
         if word.text != "its" or word.tag != "PRP$":
             out.append(word)
+            continue
+        if i + 1 < len(words) and words[i + 1].text == "not":
+            out += [_IT, _IS]  # "its not hard", "its not the red one"
             continue
         j = i + 1
         while j < len(words) and words[j].pos == "ADV":
