@@ -30,7 +30,6 @@ ranks where it does. ``Sim`` per constraint kind:
 from __future__ import annotations
 
 import itertools
-
 import math
 import re
 from collections.abc import Callable, Iterable, Sequence
