@@ -8,11 +8,19 @@
   the tissue box"); the place is not ruled out.
 - A remark on what the speaker did not notice or see ("never noticed it before, but …",
   "I don't see any other plants, it's the tall one …") rules nothing out: it is dropped.
+- So does a remark that the target is the only one of its kind or that little else is
+  there ("no other chair in the room has wheels", "None of the other lamps are this
+  tall.", "there is nothing else on the desk", "There isn't much in the hallway",
+  "It's not a big room."): it is dropped when the request says more.
+- "besides" written for "beside" between two things ("the magazine rack besides the
+  armchair") places the first by the second; "any chair besides the red one" still
+  rules one out.
 """
 
 from __future__ import annotations
 
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.vocab.objects import canonical_label
 
 _SIDE_PREPOSITIONS = frozenset({"to", "on", "at", "by"})
 _SIDES = frozenset({"left", "right"})
@@ -136,3 +144,82 @@ def without_noticing_remark(sentence: list[Word]) -> list[Word]:
     while rest and rest[0].text in _REMARK_ENDS:
         rest = rest[1:]
     return rest or sentence
+
+
+# Openings of a remark on the other things there ("no other chair …", "nothing else …").
+_OTHERS_REMARKS = (
+    ("no", "other"), ("none", "of", "the", "other"), ("none", "of", "the", "others"),
+    ("nothing", "else"), ("nothing", "much"), ("not", "much"), ("not", "a", "lot"),
+)  # fmt: skip
+_ROOM_WORDS = frozenset({"room", "space", "place", "area"})
+
+
+def _remarks_on_others(clause: list[Word]) -> bool:
+    """Whether a clause only remarks that the target is the one of its kind there or
+    that little else is there ("no other chair in the room has wheels", "there is
+    nothing else on the desk", "there isn't much in the hallway", "it's not a big room")."""
+    texts = [w.text for w in clause]
+    if texts[:2] == ["there", "is"] or texts[:2] == ["there", "are"]:
+        texts = texts[2:]
+        if texts[:1] == ["nothing"] and len(texts) > 1 and clause[3].pos == "ADP":
+            return True  # "there is nothing on the desk"
+    if any(tuple(texts[: len(o)]) == o for o in _OTHERS_REMARKS):
+        return True
+    if texts[:3] == ["it", "is", "not"] and texts[-1:] and texts[-1] in _ROOM_WORDS:
+        return len(texts) <= 7  # "it's not a very big room"
+    return False
+
+
+def without_remarks_on_others(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request without the clauses and sentences that only remark on the other
+    things there (see :func:`_remarks_on_others`), where something else is said."""
+    out: list[list[Word]] = []
+    for sentence in sentences:
+        clauses = _clauses(sentence)
+        kept = [c for c in clauses if not _remarks_on_others(c)]
+        if len(kept) == len(clauses):
+            out.append(sentence)
+        elif kept:
+            out.append([w for k, c in enumerate(kept) for w in ([COMMA] if k else []) + c])
+    return out if any(out) else sentences
+
+
+def _clauses(sentence: list[Word]) -> list[list[Word]]:
+    """A sentence's parts between commas."""
+    parts: list[list[Word]] = [[]]
+    for w in sentence:
+        if w is COMMA or w.text == ",":
+            parts.append([])
+        else:
+            parts[-1].append(w)
+    return [p for p in parts if p]
+
+
+_BESIDES = Word("beside", "beside", "ADP", "IN", "prep")
+_ANY_WORDS = frozenset({"any", "anything", "other", "another", "else", "everything", "all"})
+
+
+def _names_thing(texts: list[str], last: Word) -> bool:
+    """Whether the words end with a thing's name (spaCy's noun, or a kind the vocabulary
+    knows: "magazine rack", which spaCy may read as a verb)."""
+    if last.pos in ("NOUN", "PROPN"):
+        return True
+    return any(canonical_label(" ".join(texts[-n:])) is not None for n in (1, 2))
+
+
+def besides_as_beside(sentence: list[Word]) -> list[Word]:
+    """ "the magazine rack besides the armchair": "beside" (see the module docstring)."""
+    texts = [w.text for w in sentence]
+    if "besides" not in texts:
+        return sentence
+    i = texts.index("besides")
+    if i == 0 or not _names_thing(texts[:i], sentence[i - 1]) or _ANY_WORDS & set(texts[:i]):
+        return sentence
+    j = i + 1
+    while j < len(sentence) and sentence[j].pos in ("DET", "ADJ", "NUM"):
+        j += 1
+    if j >= len(sentence) or j == i + 1 or sentence[j].pos not in ("NOUN", "PROPN"):
+        return sentence
+    if texts[j] in ("one", "ones"):
+        return sentence
+    return [*sentence[:i], _BESIDES, *sentence[i + 1 :]]

@@ -11,7 +11,13 @@ request is set aside, and a run-on is split.
 
 from __future__ import annotations
 
-from inherit_sg.retrieval.rules.rewording import only_thing, owner_side, without_noticing_remark
+from inherit_sg.retrieval.rules.rewording import (
+    besides_as_beside,
+    only_thing,
+    owner_side,
+    without_noticing_remark,
+    without_remarks_on_others,
+)
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.objects import canonical_label
 from inherit_sg.vocab.rooms import room_type
@@ -46,6 +52,7 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
+    sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
@@ -510,10 +517,22 @@ def _after_unsure(sentence: list[Word]) -> int | None:
     return None
 
 
-def _only_unsure(sentence: list[Word]) -> bool:
-    """Whether a sentence only says what the speaker is unsure of ("not 100% sure.")."""
+_ONE = frozenset({"one", "ones"})
+
+
+def _only_unsure(sentence: list[Word], following: list[Word]) -> bool:
+    """Whether a sentence only says what the speaker is unsure of ("not 100% sure.",
+    "not sure of the colour" before "but it's the lamp …")."""
     kept = tuple(w.text for j, w in enumerate(sentence) if j == 0 or w.text not in _INTENSIFIERS)
-    return kept in _UNSURE_OPENERS
+    if kept in _UNSURE_OPENERS:
+        return True
+    opens = any(kept[: len(o)] == o for o in _UNSURE_OPENERS)
+    if not opens or not following or following[0].text not in ("but", "so", "just"):
+        return False
+    # the request names its own thing ("… but it's the lamp by the bed"), not only "the
+    # wooden one" after "not sure if it's a dresser or a cabinet"
+    head = next((w for w in following if w.pos in ("NOUN", "PROPN") or w.text in _ONE), None)
+    return head is not None and head.text not in _ONE and head.text not in _LIGHT_NOUNS
 
 
 def _points_back(words: list[Word]) -> bool:
@@ -537,7 +556,9 @@ def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:
             out.append(sentence[unsure:])
         elif cut is not None and cut + 1 < len(sentence) and _aside(sentence[:cut]):
             out.append(sentence[cut + 1 :])
-        elif n + 1 < len(sentences) and (_aside(sentence) or _only_unsure(sentence)):
+        elif n + 1 < len(sentences) and (
+            _aside(sentence) or _only_unsure(sentence, sentences[n + 1])
+        ):
             continue  # "No signature needed.", "not 100% sure. but …"
         else:
             out.append(sentence)

@@ -186,9 +186,10 @@ def _lookup(words: list[Word], i: int) -> tuple[int, dict[str, Any], bool]:
         if hit is None and (last.plural or last.tag == "VBZ"):
             for stem in _singulars(last):
                 hit = table.get((*key[:-1], stem))
-                if hit is not None:
+                if hit is not None and (_FUNCTION_WORDS.isdisjoint(hit) or last.text == stem + "s"):
                     plural = "noun" in hit
                     break
+                hit = None  # "notes" is no plural of "not" ("nothings" is "nothing's")
         if hit is None and span[0].pos in ("VERB", "AUX") and span[0].lemma != key[0]:
             phrase = " ".join((span[0].lemma, *key[1:]))
             if phrase in verbs:
@@ -444,6 +445,9 @@ def _first_in_time(words: list[Word], i: int) -> bool:
     return words[i - 1].dep in ("dobj", "pobj") and any(w.pos == "VERB" for w in words[:i])
 
 
+# Readings of function words, which have no plural ("notes" is not "not" + s).
+_FUNCTION_WORDS = frozenset({"neg", "det", "prep", "be", "modal", "anaphor", "except", "sub",
+                             "and", "or", "num", "ord"})  # fmt: skip
 # Readings of a word the vocabulary knows only as a verb of a need.
 _VERBISH = frozenset({"fverb", "overb", "seek", "unk"})
 
