@@ -113,6 +113,7 @@ class Lexicon:
     exceptions: frozenset[str]
     emphasis: frozenset[str]
     hedges: frozenset[str]
+    fault_verbs: frozenset[str]
     determiners: frozenset[str]
     seekers: frozenset[str]
     anaphors: frozenset[str]
@@ -219,6 +220,7 @@ def lexicon() -> Lexicon:
         exceptions=_words(data, "logic", "exceptions"),
         emphasis=_words(data, "logic", "emphasis"),
         hedges=_words(data, "logic", "hedges"),
+        fault_verbs=_words(data, "logic", "fault_verbs"),
         determiners=frozenset(_list(words, "determiners", where)),
         seekers=frozenset(_list(words, "seekers", where)),
         anaphors=frozenset(_list(words, "anaphors", where)),

@@ -841,19 +841,29 @@ class Grammar(Cursor):
             ends = (*ends, "prep", "placement")  # "that isn't plugged in by the bed"
         if after is not None and not after.has(*ends):
             return False  # "that holds the TV", "that sits by …": more than a state
+        relative = any(t.has("rel") for t in self.toks[max(0, self.i - 3) : self.i])
         words = [self.advance().text for _ in range(k)]
         verb = tok.text if tok.tag in ("VBG", "VBN") or phrasal else (tok.lemma or tok.text)
         if k == 2 and words[1] in ("on", "off"):
             value = text = words[1]  # "not turned on": the state "on"
         else:
             value, text = " ".join([verb, *words[1:]]), " ".join(words)
+        neg = self.take_neg()
+        if neg and not relative and tok.tag != "VBN" and self._reports_fault(tok, words):
+            value, neg, text = "broken", False, f"not {text}"  # "it won't charge": broken
         np.constraints.append(
             AttributeConstraint(
-                key="state", value=value, negated=self.take_neg(),
-                weight=self.weight("attribute"), text=text,
+                key="state", value=value, negated=neg, weight=self.weight("attribute"), text=text
             )
-        )  # fmt: skip
+        )
         return True
+
+    @staticmethod
+    def _reports_fault(tok: Tok, words: list[str]) -> bool:
+        """Whether a negated verb said of the thing itself (not in a relative clause)
+        reports a fault ("the scanner won't charge", "the camera isn't connecting"); "the
+        tablet that's not charging" and "not turned on" tell one thing from another."""
+        return " ".join([tok.lemma or tok.text, *words[1:]]) in lexicon().fault_verbs
 
     def _position(self, np: NP, sub: NP, predicate: str) -> None:
         """ "the top of the stairs", "the far end of the hallway": a position, not a

@@ -48,6 +48,7 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.problems import open_problem, split_problem
+from inherit_sg.retrieval.rules.rewording import called_off
 from inherit_sg.retrieval.rules.sentences import (
     CORRECTION_WORDS,
     comma_after_denied_thing,
@@ -257,7 +258,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
     analysed, fixes = analyse_text(text)
-    problem, sentences = split_problem(analysed)
+    problem, sentences = split_problem(called_off(analysed))
     unknown_problem = open_problem(analysed) if problem is None else None
     words = _flat(sentences)
     reason = global_reason(words) if words or problem is None else None

@@ -12,6 +12,19 @@
   there ("no other chair in the room has wheels", "None of the other lamps are this
   tall.", "there is nothing else on the desk", "There isn't much in the hallway",
   "It's not a big room."): it is dropped when the request says more.
+- "never mind the first message, find my wallet instead", "nvm, found it": what is
+  called off is no longer asked for; it is dropped, not ruled out.
+- "move the bike away from the car", "the chair pushed away from the table": where a
+  thing is moved to, not a place it is not near.
+- "no clue where the flashlight is", "no idea where my keys went": the thing asked
+  about, with nothing ruled out.
+- "no ice left in the freezer so grab the cold pack", "there's nothing in the fridge so
+  can you check the freezer": what has run out before a request for another thing is
+  no thing ruled out; the opening is dropped.
+- "can I have another towel" asks for one more, not for a different one.
+- "non-stick", "non-slip": one adjective of its own; "non-wooden" still negates a
+  material.
+- "the sign that says no smoking": the words on a thing are no negation.
 - "besides" written for "beside" between two things ("the magazine rack besides the
   armchair") places the first by the second; "any chair besides the red one" still
   rules one out.
@@ -223,3 +236,176 @@ def besides_as_beside(sentence: list[Word]) -> list[Word]:
     if texts[j] in ("one", "ones"):
         return sentence
     return [*sentence[:i], _BESIDES, *sentence[i + 1 :]]
+
+
+_INTERJECTIONS = frozenset({"nope", "no", "ok", "okay", "oh", "oops", "ah", "sorry", ","})
+
+
+def called_off(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The sentences without an opening "never mind …" / "forget it" and what it calls
+    off, up to a comma or the next command ("never mind the first message find my
+    wallet instead" → "find my wallet instead"). When nothing else is said ("nvm, found
+    it") only the opening words go."""
+    cut = [_after_called_off(s) for s in sentences]
+    kept = [s[k:] for s, (_, k) in zip(sentences, cut, strict=True) if s[k:]]
+    if kept:
+        return kept
+    return [
+        [*s[:i], *s[i + 2 :]] if i >= 0 else s for s, (i, _) in zip(sentences, cut, strict=True)
+    ]
+
+
+def _after_called_off(sentence: list[Word]) -> tuple[int, int]:
+    """Where a "never mind" / "forget it" opening starts and where what follows what it
+    calls off starts; (-1, 0) when the sentence has none."""
+    texts = [w.text for w in sentence]
+    i = 0
+    while i < len(texts) and texts[i] in _INTERJECTIONS:
+        i += 1
+    if texts[i : i + 2] != ["never", "mind"] and texts[i : i + 2] not in (
+        ["forget", "it"],
+        ["forget", "that"],
+    ):
+        return -1, 0
+    k = i + 2
+    while k < len(sentence) and sentence[k].text != "," and not _command_at(sentence, k):
+        k += 1
+    while k < len(sentence) and texts[k] in _INTERJECTIONS:
+        k += 1
+    return i, k
+
+
+def _command_at(sentence: list[Word], k: int) -> bool:
+    """Whether a new command starts at word ``k`` ("… find my wallet instead")."""
+    word = sentence[k]
+    base = word.tag in ("VB", "VBP") and word.text == word.lemma  # "find" (spaCy: VBP too)
+    return word.pos == "VERB" and base and k > 0 and sentence[k - 1].pos in ("NOUN", "PROPN")
+
+
+_MOVING = frozenset({"move", "push", "pull", "slide", "drag", "roll", "shift", "keep", "put",
+                     "take", "carry", "turn", "set", "place"})  # fmt: skip
+
+
+def without_moved_away(sentence: list[Word]) -> list[Word]:
+    """The sentence without "away from X" where X is where a thing is moved from ("move
+    the bike away from the car", "the chair pushed away from the table")."""
+    texts = [w.text for w in sentence]
+    for i in range(1, len(texts) - 2):
+        if texts[i : i + 2] != ["away", "from"]:
+            continue
+        if not any(w.lemma in _MOVING and w.pos == "VERB" for w in sentence[max(0, i - 6) : i]):
+            continue
+        end = i + 2
+        while end < len(sentence) and sentence[end].pos in ("DET", "ADJ", "NUM", "PRON"):
+            end += 1
+        while end < len(sentence) and sentence[end].pos in ("NOUN", "PROPN"):
+            end += 1
+        return [*sentence[:i], *sentence[end:]]
+    return sentence
+
+
+_ASKING_FOR = frozenset({"have", "get", "bring", "grab", "fetch", "need", "want", "give"})
+_A = Word("a", "a", "DET", "DT", "det")
+
+
+def another_as_one_more(sentence: list[Word]) -> list[Word]:
+    """ "can I have another towel", "bring me another blanket": one more, "a"."""
+    out = list(sentence)
+    for i, word in enumerate(sentence):
+        if word.text != "another" or i == 0:
+            continue
+        j = i - 1
+        if sentence[j].text in ("me", "us") and j > 0:
+            j -= 1
+        if sentence[j].lemma in _ASKING_FOR and sentence[j].pos in ("VERB", "AUX"):
+            out[i] = _A
+    return out
+
+
+_SAYING = frozenset({"say", "read"})
+_NO_WORDS = frozenset({"no", "not", "do"})
+
+
+def without_sign_negation(sentence: list[Word]) -> list[Word]:
+    """ "the sign that says no smoking", "the label that reads do not stack": the words
+    written on the thing, without their "no" / "do not"."""
+    for i, word in enumerate(sentence[:-2]):
+        if word.lemma not in _SAYING or word.pos != "VERB" or sentence[i + 1].text not in _NO_WORDS:
+            continue
+        j = i + 1
+        while j < len(sentence) and sentence[j].text in _NO_WORDS:
+            j += 1
+        return [*sentence[: i + 1], *sentence[j:]]
+    return sentence
+
+
+_WH = frozenset({"where", "what", "which", "how", "when", "why", "if", "whether"})
+
+
+def without_no_idea(sentence: list[Word]) -> list[Word]:
+    """ "no clue where the flashlight is …" as "where the flashlight is …"."""
+    texts = [w.text for w in sentence]
+    i = 2 if texts[:2] in (["i", "have"], ["we", "have"]) else 0
+    if texts[i : i + 1] != ["no"] or texts[i + 1 : i + 2] not in (["idea"], ["clue"]):
+        return sentence
+    rest = sentence[i + 2 :]
+    if any(w.text in ("but", "so", "just", ",") for w in rest):
+        return sentence  # "no idea which aisle but find the batteries": the request follows
+    return rest if rest and rest[0].text in _WH else sentence
+
+
+_RUN_OUT_OPENINGS = (("there", "is", "no"), ("there", "are", "no"), ("there", "is", "nothing"),
+                     ("we", "have", "no"), ("we", "are", "out", "of"), ("no",))  # fmt: skip
+_REQUEST_LINKS = frozenset({"so", ","})
+_ASKING = frozenset({"can", "could", "would", "will", "is", "are", "please"})
+
+
+def without_run_out(sentence: list[Word]) -> list[Word]:
+    """The sentence without an opening that says what has run out or is not there, when
+    a request for another thing follows after "so" or a comma ("no ice left in the
+    freezer so grab the cold pack")."""
+    texts = [w.text for w in sentence]
+    opening = next((o for o in _RUN_OUT_OPENINGS if tuple(texts[: len(o)]) == o), None)
+    if opening is None or (opening == ("no",) and sentence[0].dep != "det"):
+        return sentence
+    for j in range(len(opening) + 1, len(sentence) - 2):
+        if texts[j] not in _REQUEST_LINKS:
+            continue
+        rest = sentence[j + 1 :]
+        while rest and rest[0].text in _REQUEST_LINKS:
+            rest = rest[1:]
+        asks = bool(rest) and (
+            rest[0].text in _ASKING or (rest[0].pos == "VERB" and rest[0].tag == "VB")
+        )
+        if asks and any(w.pos in ("NOUN", "PROPN") for w in rest):
+            return rest
+        return sentence
+    return sentence
+
+
+def non_words(sentence: list[Word]) -> list[Word]:
+    """ "non stick" (from "non-stick") as one adjective "non-stick", unless what follows
+    "non" is a colour, material or other attribute the vocabulary knows ("non-wooden")."""
+    texts = [w.text for w in sentence]
+    if "non" not in texts:
+        return sentence
+    from inherit_sg.vocab.colours import colour_words
+    from inherit_sg.vocab.lexicon import lexicon
+
+    lx = lexicon()
+    out: list[Word] = []
+    i = 0
+    while i < len(sentence):
+        word = sentence[i]
+        nxt = sentence[i + 1] if i + 1 < len(sentence) else None
+        known = nxt is not None and (
+            nxt.text in lx.materials or nxt.text in lx.adjectives or nxt.text in colour_words()
+        )
+        if word.text == "non" and nxt is not None and nxt.text.isalpha() and not known:
+            merged = f"non-{nxt.text}"
+            out.append(Word(merged, merged, "ADJ", "JJ", "amod"))
+            i += 2
+            continue
+        out.append(word)
+        i += 1
+    return out

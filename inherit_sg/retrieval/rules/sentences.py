@@ -12,11 +12,17 @@ request is set aside, and a run-on is split.
 from __future__ import annotations
 
 from inherit_sg.retrieval.rules.rewording import (
+    another_as_one_more,
     besides_as_beside,
+    non_words,
     only_thing,
     owner_side,
+    without_moved_away,
+    without_no_idea,
     without_noticing_remark,
     without_remarks_on_others,
+    without_run_out,
+    without_sign_negation,
 )
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.objects import canonical_label
@@ -51,8 +57,12 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
+    sentences = [non_words(without_run_out(without_no_idea(s))) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
+    sentences = [
+        without_sign_negation(another_as_one_more(without_moved_away(s))) for s in sentences
+    ]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
@@ -592,12 +602,18 @@ def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
 
 def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
     """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
-    lamp by the window?", "isn't this the washing machine?") without its "not": "is it
+    lamp by the window?", "isn't this the washing machine?", "is the stove not turned
+    off?", "isn't there a fire extinguisher in the garage") without its "not": "is it
     not X" asks whether it is X."""
     if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
         return sentence
     if sentence[1].text in IT_WORDS and sentence[2].text == "not":
         return [*sentence[:2], *sentence[3:]]
-    if sentence[1].text == "not" and sentence[2].text in IT_WORDS:
-        return [sentence[0], *sentence[2:]]  # "isn't it the lamp on the nightstand?"
+    if sentence[1].text == "not" and sentence[2].text in IT_WORDS | {"there"}:
+        return [sentence[0], *sentence[2:]]  # "isn't it the lamp …?", "isn't there a …"
+    k = 1  # "is the stove not turned off?": the thing, then "not"
+    while k < min(len(sentence), 6) and sentence[k].pos in ("DET", "ADJ", "NOUN", "PROPN"):
+        k += 1
+    if 2 < k < len(sentence) - 1 and sentence[k].text == "not":
+        return [*sentence[:k], *sentence[k + 1 :]]
     return sentence
