@@ -69,6 +69,9 @@ _DIRECTIVES = frozenset({
     "search for", "look for", "locate", "find me",
 })  # fmt: skip
 _ENTERING = frozenset({"in", "into", "inside", "through"})
+# Words of a heading with no landmark ("looking in", "look to your right").
+_HEADING_WORDS = frozenset({"in", "inside", "into", "out", "ahead", "straight", "forward", "to",
+                            "towards", "toward", "the", "room", "across"})  # fmt: skip
 _PARTICLES = frozenset({
     "down", "up", "in", "into", "through", "out", "from", "of", "to", "toward", "towards",
     "at", "by", "past", "along", "across", "around", "over", "onto", "inside",
@@ -632,16 +635,38 @@ class ClauseParser(Grammar):
         stand) is kept and the second is consumed so it is not read as the target."""
         tok = self.peek()
         lx = lexicon()
-        if tok is None or not (tok.has("view") or tok.lemma in lx.facing_verbs):
+        if tok is None:
+            return
+        looking = str(tok.tags.get("fverb", "")).split()[:1]  # "looking out": "look out"
+        facing = tok.lemma in lx.facing_verbs or bool(looking and looking[0] in lx.facing_verbs)
+        if not (tok.has("view") or facing):
             return
         snap = self.state()
         self.advance()
+        verb_end = self.i
         while (nxt := self.peek()) is not None and nxt.text in _PARTICLES and not self.np_start():
             self.advance()
+        if self._heading_only(self.i > verb_end):
+            self.notes.append("second viewpoint phrase: the speaker's heading")
+            return  # "standing in the doorway looking in, …", "… look to your right, …"
         if not self.np_start() or self.parse_np(landmark=True) is None:
             self.restore(snap)
             return
         self.notes.append("second viewpoint phrase: the speaker's heading")
+
+    def _heading_only(self, particle: bool) -> bool:
+        """Whether a second viewpoint phrase says only which way the speaker looks, with
+        no landmark, up to a comma ("looking in", "looking straight ahead", "look to your
+        right"); consumed when it does."""
+        k = 0
+        while (tok := self.peek(k)) is not None and not tok.has("comma") and k < 4:
+            if not (tok.text in _HEADING_WORDS or tok.has("seeker", "dir", "adv")):
+                return False
+            k += 1
+        if (k == 0 and not particle) or not self.at("comma", k=k):
+            return False
+        self.i += k
+        return True
 
     def _more_follows(self) -> bool:
         """Whether the request goes on after a viewpoint phrase (else that phrase names
@@ -671,13 +696,14 @@ class ClauseParser(Grammar):
         return None
 
     def _from_clause(self, k: int) -> bool:
-        """ "from the door, …" opens a viewpoint only at the start and before a comma, or
+        """ "from the door, …" opens a viewpoint only at the start and before a comma or a
+        verb of looking ("from the doorway of the dining room look to your right, …"), or
         before a second determiner that opens the thing sought ("from the door the third
         shelf")."""
         if k or self.i > 0:
             return False
         j = 1
-        while (t := self.peek(j)) is not None and not t.has("comma"):
+        while (t := self.peek(j)) is not None and not (t.has("comma") or self._view_verb(j)):
             if j >= 3 and t.text in _OPENING_DETERMINERS and self.at("det", k=j - 2):
                 return j <= 7
             j += 1

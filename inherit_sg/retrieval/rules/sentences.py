@@ -405,8 +405,12 @@ def _split_placed_by_it(sentence: list[Word]) -> list[list[Word]]:
         verb = next((k for k, w in enumerate(after) if w.tag in FINITE), None)
         if verb is None or not any(w.pos in ("NOUN", "PROPN") for w in after[:verb]):
             continue
-        if any(w.text in ("it", "them") for w in after[verb:]) and _has_clause(sentence[:j]):
-            return [sentence[:j], after]
+        before = sentence[:j]
+        fragment = not any(w.tag in FINITE or w.tag == "MD" for w in before) and any(
+            w.pos == "ADP" for w in before[1:]
+        )  # "shower in the corner of the bathroom and the towel … next to it is blue"
+        if any(w.text in ("it", "them") for w in after) and (_has_clause(before) or fragment):
+            return [before, after]
     return [sentence]
 
 

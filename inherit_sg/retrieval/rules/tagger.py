@@ -388,7 +388,22 @@ def _verb_before_place(words: list[Word], i: int) -> bool:
         return False
     if not _known_verb(words[i].lemma):
         return False  # "Stove next to the dishwasher": spaCy's guess, a thing named
+    if _names_thing_not_place_verb(words[i]) and words[i + 1].text != "to":
+        return False  # "microwave on top of the counter" (but "switch to the larger box")
     return words[i + 1].pos in ("ADP", "ADV") and words[i + 1].text not in ("of", "'s")
+
+
+def _names_thing_not_place_verb(word: Word) -> bool:
+    """Whether a word is a thing's name whose verb (a need's verb, "to microwave", "to
+    iron") is no verb of standing, moving or looking, so it is no command before a place."""
+    lx = lexicon()
+    place_verb = (
+        word.lemma in lx.viewpoint_verbs
+        or word.lemma in lx.locative_verbs
+        or word.lemma in lx.facing_verbs
+        or word.lemma in lx.other_verbs
+    )
+    return not place_verb and object_vocab.canonical_label(word.text) is not None
 
 
 def _known_verb(lemma: str) -> bool:
