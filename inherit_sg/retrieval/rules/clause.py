@@ -421,11 +421,23 @@ class ClauseParser(Grammar):
             j += 1
         if not self.np_start(j) or (self.at("anaphor", k=j) and not self.at("det", k=j)):
             return False
+        if tok.text in ("it", "its") and self._only_described(j):
+            return False  # "it is white and has wheels": said of the thing, no new phrase
         words = " ".join(t.text for t in self.toks[self.i : self.i + k + 1])
         self.said_of_it = self.later and tok.text in ("it", "this", "its")
         self.notes.append(f"frame: '{words}' introduces the target")
         self.i += k + 1  # "not" stays: "it's not the white cabinet, it's the brown one"
         return True
+
+    def _only_described(self, j: int) -> bool:
+        """Whether the words ``j`` tokens ahead are adjectives with no noun after them,
+        then "and" + "has" ("it is clear and has a blue lid")."""
+        k = j
+        while self.at("colour", "material", "adj", "adv", "shade", k=k) or (
+            (tok := self.peek(k)) is not None and tok.pos == "ADJ"  # "clear" (by spaCy)
+        ):
+            k += 1
+        return k > j and self.at("and", k=k) and self.at("have", k=k + 1)
 
     def _request_verb(self) -> None:
         """An imperative that asks to find or act on something ("select", "identify",

@@ -467,6 +467,11 @@ _FUNCTION_WORDS = frozenset({"neg", "det", "prep", "be", "modal", "anaphor", "ex
 _VERBISH = frozenset({"fverb", "overb", "seek", "unk"})
 
 
+def _adjective_after_be(words: list[Word], i: int) -> bool:
+    """Whether spaCy reads word ``i`` as an adjective right after "is" / "are"."""
+    return i > 0 and words[i].pos == "ADJ" and words[i - 1].lemma == "be"
+
+
 def _modifies_noun(words: list[Word], i: int) -> bool:
     """Whether spaCy reads word ``i`` as a modifier inside a noun phrase (a compound or
     an adjective) with the noun it modifies after it."""
@@ -541,6 +546,11 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.tags = {"adv": words[i].text}  # "find the copier first": a step
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
+                if tok.has("fverb") and _adjective_after_be(words, i):
+                    del tok.tags["fverb"]  # "it is clear and has a blue lid": a look
+                    tok.tags.pop("overb", None)
+                    if not tok.tags:
+                        tok.tags = {"adj": ("other", words[i].text)}
                 if tok.has("fverb") and _modifies_noun(words, i) and set(tok.tags) <= _VERBISH:
                     # "lunch box on the windowsill", "clear plastic storage bin": a word of
                     # the thing's name or look, not the need "to lunch" / "to clear"
