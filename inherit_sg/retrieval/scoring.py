@@ -795,7 +795,7 @@ def _compared(
 
 
 # Landmark candidates kept for a landmark that asks nothing of its thing ("a table
-# without anything on it", "the shelf with nothing on it"): each object found is one.
+# without anything on it"): each object found is one.
 ANY_LANDMARKS = 2000
 
 

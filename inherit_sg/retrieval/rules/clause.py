@@ -649,9 +649,8 @@ class ClauseParser(Grammar):
         lx = lexicon()
         if tok is None:
             return
-        looking = str(tok.tags.get("fverb", "")).split()[:1]  # "looking out": "look out"
-        facing = tok.lemma in lx.facing_verbs or bool(looking and looking[0] in lx.facing_verbs)
-        if not (tok.has("view") or facing):
+        looking = str(tok.tags.get("fverb", "")).split(" ")[0]  # "looking out": "look out"
+        if not (tok.has("view") or tok.lemma in lx.facing_verbs or looking in lx.facing_verbs):
             return
         snap = self.state()
         self.advance()

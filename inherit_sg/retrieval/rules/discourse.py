@@ -25,6 +25,7 @@ from inherit_sg.retrieval.constraints import (
 )
 from inherit_sg.retrieval.rules.clause import Clause
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE
+from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import Word
 from inherit_sg.vocab.objects import canonical_label, is_kind_of
@@ -332,17 +333,9 @@ def picks_out(sentence: list[Word]) -> bool:
         if j + 1 >= len(sentence) or texts[j] not in _CHOOSERS:
             continue
         k = j + 2 if texts[j + 1] in ("are", "am") and j + 2 < len(sentence) else j + 1
-        if sentence[k].lemma in _PICKING and _ends_noun(sentence[:i]):
+        if sentence[k].lemma in _PICKING and ends_with_thing(sentence[:i]):
             return True
     return False
-
-
-def _ends_noun(words: list[Word]) -> bool:
-    """Whether ``words`` end with a noun ("the trash can": spaCy may read "can" as a
-    verb, the label says it is a noun)."""
-    if words[-1].pos in ("NOUN", "PROPN"):
-        return True
-    return canonical_label(" ".join(w.text for w in words[-2:])) is not None
 
 
 def split_at_pick(sentence: list[Word]) -> list[list[Word]]:

@@ -33,6 +33,8 @@
 from __future__ import annotations
 
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.vocab.colours import colour_words
+from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label
 
 _SIDE_PREPOSITIONS = frozenset({"to", "on", "at", "by"})
@@ -41,6 +43,7 @@ _THE = Word("the", "the", "DET", "DT", "det")
 _SIDE = Word("side", "side", "NOUN", "NN", "pobj")
 _OF = Word("of", "of", "ADP", "IN", "prep")
 _IT = Word("it", "it", "PRON", "PRP", "pobj")
+_THEM = Word("them", "them", "PRON", "PRP", "pobj")
 _OWNER_WORDS = frozenset({"DET", "ADJ", "NOUN", "PROPN", "NUM"})
 
 
@@ -72,7 +75,7 @@ def _owned_side_at(sentence: list[Word], i: int) -> tuple[list[Word], Word, int]
     if texts[:2] == ["it", "is"] and len(rest) > 2 and texts[2] in _SIDES:
         owner, k = [_IT], 2  # "on its left" (at times read as "on it is left")
     elif texts[:1] in (["its"], ["their"]) and len(rest) > 1 and texts[1] in _SIDES:
-        owner, k = [_IT if texts[0] == "its" else replace_text(_IT, "them")], 1
+        owner, k = [_IT if texts[0] == "its" else _THEM], 1
     else:
         poss = next((j for j, w in enumerate(rest) if w.dep == "poss"), None)
         if poss is None or poss + 1 >= len(rest) or texts[poss + 1] not in _SIDES:
@@ -94,11 +97,6 @@ def _owned_side_at(sentence: list[Word], i: int) -> tuple[list[Word], Word, int]
 def _as_object(word: Word) -> Word:
     """``word``, the owner in "the bed's right", as the object of "of"."""
     return Word(word.text, word.lemma, word.pos, word.tag, "pobj")
-
-
-def replace_text(word: Word, text: str) -> Word:
-    """``word`` with another surface form and lemma."""
-    return Word(text, text, word.pos, word.tag, word.dep)
 
 
 _NOTHING_ELSE = frozenset({"else", "much"})
@@ -201,7 +199,7 @@ def _clauses(sentence: list[Word]) -> list[list[Word]]:
     """A sentence's parts between commas."""
     parts: list[list[Word]] = [[]]
     for w in sentence:
-        if w is COMMA or w.text == ",":
+        if w.text == ",":
             parts.append([])
         else:
             parts[-1].append(w)
@@ -212,11 +210,13 @@ _BESIDES = Word("beside", "beside", "ADP", "IN", "prep")
 _ANY_WORDS = frozenset({"any", "anything", "other", "another", "else", "everything", "all"})
 
 
-def _names_thing(texts: list[str], last: Word) -> bool:
-    """Whether the words end with a thing's name (spaCy's noun, or a kind the vocabulary
-    knows: "magazine rack", which spaCy may read as a verb)."""
-    if last.pos in ("NOUN", "PROPN"):
+def ends_with_thing(words: list[Word]) -> bool:
+    """Whether ``words`` end with a thing's name: spaCy's noun, or a kind the vocabulary
+    knows in the last one or two words ("magazine rack", "trash can", which spaCy may
+    read as a verb)."""
+    if words[-1].pos in ("NOUN", "PROPN"):
         return True
+    texts = [w.text for w in words[-2:]]
     return any(canonical_label(" ".join(texts[-n:])) is not None for n in (1, 2))
 
 
@@ -226,7 +226,7 @@ def besides_as_beside(sentence: list[Word]) -> list[Word]:
     if "besides" not in texts:
         return sentence
     i = texts.index("besides")
-    if i == 0 or not _names_thing(texts[:i], sentence[i - 1]) or _ANY_WORDS & set(texts[:i]):
+    if i == 0 or not ends_with_thing(sentence[:i]) or _ANY_WORDS & set(texts[:i]):
         return sentence
     j = i + 1
     while j < len(sentence) and sentence[j].pos in ("DET", "ADJ", "NUM"):
@@ -389,9 +389,6 @@ def non_words(sentence: list[Word]) -> list[Word]:
     texts = [w.text for w in sentence]
     if "non" not in texts:
         return sentence
-    from inherit_sg.vocab.colours import colour_words
-    from inherit_sg.vocab.lexicon import lexicon
-
     lx = lexicon()
     out: list[Word] = []
     i = 0

@@ -512,12 +512,10 @@ def _after_unsure(sentence: list[Word]) -> int | None:
     but check the counter for my watch"); "on second thought" needs none. None when the
     sentence opens otherwise or nothing follows."""
     texts = [w.text for w in sentence]
-    kept = [j for j, t in enumerate(texts) if j == 0 or t not in _INTENSIFIERS]
-    opening = tuple(texts[j] for j in kept)
-    opener = next((o for o in _UNSURE_OPENERS if opening[: len(o)] == o), None)
-    if opener is None:
+    found = _unsure_opening(sentence)
+    if found is None:
         return None
-    after = kept[len(opener) - 1] + 1  # the first word after the opening
+    opener, after = found
     if opener == ("on", "second", "thought"):
         start = after + (texts[after : after + 1] == [","])
         return start if start < len(sentence) else None
@@ -534,14 +532,24 @@ def _after_unsure(sentence: list[Word]) -> int | None:
 _ONE = frozenset({"one", "ones"})
 
 
+def _unsure_opening(sentence: list[Word]) -> tuple[tuple[str, ...], int] | None:
+    """The opening of :data:`_UNSURE_OPENERS` a sentence starts with, read past words
+    that only strengthen it ("not 100% sure"), and where the words after it start."""
+    kept = [j for j, w in enumerate(sentence) if j == 0 or w.text not in _INTENSIFIERS]
+    opening = tuple(sentence[j].text for j in kept)
+    opener = next((o for o in _UNSURE_OPENERS if opening[: len(o)] == o), None)
+    return None if opener is None else (opener, kept[len(opener) - 1] + 1)
+
+
 def _only_unsure(sentence: list[Word], following: list[Word]) -> bool:
     """Whether a sentence only says what the speaker is unsure of ("not 100% sure.",
     "not sure of the colour" before "but it's the lamp …")."""
-    kept = tuple(w.text for j, w in enumerate(sentence) if j == 0 or w.text not in _INTENSIFIERS)
-    if kept in _UNSURE_OPENERS:
+    found = _unsure_opening(sentence)
+    if found is None:
+        return False
+    if all(w.text in _INTENSIFIERS for w in sentence[found[1] :]):
         return True
-    opens = any(kept[: len(o)] == o for o in _UNSURE_OPENERS)
-    if not opens or not following or following[0].text not in ("but", "so", "just"):
+    if not following or following[0].text not in ("but", "so", "just"):
         return False
     # the request names its own thing ("… but it's the lamp by the bed"), not only "the
     # wooden one" after "not sure if it's a dresser or a cabinet"

@@ -396,14 +396,19 @@ def _verb_before_place(words: list[Word], i: int) -> bool:
 def _names_thing_not_place_verb(word: Word) -> bool:
     """Whether a word is a thing's name whose verb (a need's verb, "to microwave", "to
     iron") is no verb of standing, moving or looking, so it is no command before a place."""
+    return not _place_verb(word.lemma) and object_vocab.canonical_label(word.text) is not None
+
+
+def _place_verb(lemma: str) -> bool:
+    """Whether the vocabulary knows ``lemma`` as a verb of moving, standing, placing or
+    looking, or as one of the other verbs."""
     lx = lexicon()
-    place_verb = (
-        word.lemma in lx.viewpoint_verbs
-        or word.lemma in lx.locative_verbs
-        or word.lemma in lx.facing_verbs
-        or word.lemma in lx.other_verbs
+    return (
+        lemma in lx.viewpoint_verbs
+        or lemma in lx.locative_verbs
+        or lemma in lx.other_verbs
+        or lemma in lx.facing_verbs
     )
-    return not place_verb and object_vocab.canonical_label(word.text) is not None
 
 
 def _known_verb(lemma: str) -> bool:
@@ -411,15 +416,7 @@ def _known_verb(lemma: str) -> bool:
     looking, placing, a function verb or one of the other verbs), so that a word spaCy
     tags as a verb at the start of a request is read as one ("Turn on the lamp"; not
     "Mirror on the back of the door")."""
-    lx = lexicon()
-    return (
-        lemma in lx.viewpoint_verbs
-        or lemma in lx.locative_verbs
-        or lemma in lx.other_verbs
-        or lemma in lx.facing_verbs
-        or lemma in _PARTICLE_VERBS
-        or lemma in phrase_table()[2]
-    )
+    return _place_verb(lemma) or lemma in _PARTICLE_VERBS or lemma in phrase_table()[2]
 
 
 def _inside_compound(words: list[Word], i: int) -> bool:
@@ -470,6 +467,15 @@ _VERBISH = frozenset({"fverb", "overb", "seek", "unk"})
 def _adjective_after_be(words: list[Word], i: int) -> bool:
     """Whether spaCy reads word ``i`` as an adjective right after "is" / "are"."""
     return i > 0 and words[i].pos == "ADJ" and words[i - 1].lemma == "be"
+
+
+def _as_description(tok: Tok, word: Word) -> None:
+    """Drop the verb readings of ``tok``; with nothing else known of it, it is an
+    adjective of its own (spaCy's adjective) or an open-vocabulary noun."""
+    for key in ("fverb", "overb", "seek"):
+        tok.tags.pop(key, None)
+    if set(tok.tags) <= {"unk"}:
+        tok.tags = {"adj": ("other", word.text)} if word.pos == "ADJ" else {"unk": word.text}
 
 
 def _modifies_noun(words: list[Word], i: int) -> bool:
@@ -546,16 +552,14 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.tags = {"adv": words[i].text}  # "find the copier first": a step
                 _grammar(tok, words[i], first)
                 _open_readings(tok, words[i])
-                if tok.has("fverb") and _adjective_after_be(words, i):
-                    del tok.tags["fverb"]  # "it is clear and has a blue lid": a look
-                    tok.tags.pop("overb", None)
-                    if not tok.tags:
-                        tok.tags = {"adj": ("other", words[i].text)}
-                if tok.has("fverb") and _modifies_noun(words, i) and set(tok.tags) <= _VERBISH:
-                    # "lunch box on the windowsill", "clear plastic storage bin": a word of
-                    # the thing's name or look, not the need "to lunch" / "to clear"
-                    text = words[i].text
-                    tok.tags = {"unk": text} if words[i].pos != "ADJ" else {"adj": ("other", text)}
+                if tok.has("fverb") and (
+                    _adjective_after_be(words, i)
+                    or (_modifies_noun(words, i) and set(tok.tags) <= _VERBISH)
+                ):
+                    # "it is clear and has a blue lid", "lunch box on the windowsill",
+                    # "clear plastic storage bin": a word of the thing's look or name, not
+                    # the need "to clear" / "to lunch"
+                    _as_description(tok, words[i])
                 if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
                     # "a set of two curtains": a noun after its determiner, not "set" = placed
                     for key in ("be", "fverb", "overb"):

@@ -245,8 +245,8 @@ _IS = Word("is", "be", "AUX", "VBZ", "ROOT")
 
 def _its_is(words: list[Word]) -> list[Word]:
     """ "its" written for "it's" before what describes it ("its tall and stainless
-    steel", "its pretty short") or before "not": "it is". Before a noun it stays a possessive ("its
-    wooden legs"), except before a material ("its black metal")."""
+    steel", "its pretty short") or before "not": "it is". Before a noun it stays a
+    possessive ("its wooden legs"), except before a material ("its black metal")."""
     if not any(w.text == "its" for w in words):
         return words
     from inherit_sg.vocab.lexicon import lexicon
