@@ -18,6 +18,7 @@ from functools import lru_cache
 from typing import TYPE_CHECKING
 
 from inherit_sg.errors import ModelUnavailableError
+from inherit_sg.nlp.attribute_index import speed_up
 
 if TYPE_CHECKING:
     from spacy.language import Language
@@ -86,6 +87,8 @@ def _load() -> Language:
         try:
             with _numpy_matmul():
                 loaded: Language = module.load(exclude=list(_EXCLUDE))
+            if "attribute_ruler" in loaded.pipe_names:
+                speed_up(loaded.get_pipe("attribute_ruler"))  # type: ignore[arg-type]
             return loaded
         except Exception as exc:  # a broken or incompatible model package
             errors.append(f"{name}: {type(exc).__name__}: {exc}")
