@@ -33,6 +33,8 @@ def _by_verb() -> dict[str, list[tuple[str, frozenset[str], tuple[str, ...]]]]:
 def object_terms(words: list[str], lemmas: list[str] | None = None) -> set[str]:
     """Words, their lemmas and adjacent pairs ("fresh air", "get together")."""
     terms = set(words) | set(lemmas or ())
+    # "a bottle of wine", "a glass of water": one token for the phrase, and its two nouns
+    terms |= {part for term in list(terms) if " of " in term for part in term.split(" of ", 1)}
     terms |= {f"{a} {b}" for a, b in pairwise(words)}
     if lemmas:
         terms |= {f"{a} {b}" for a, b in pairwise(lemmas)}

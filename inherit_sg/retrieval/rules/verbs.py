@@ -153,6 +153,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     elif g.np_start() and not g.at("floor"):
         obj = _objects(g, landmark=verb not in lx.light_verbs)
+    if obj is not None and _by_means(g, start):
+        _take_source(g)
     words = [t.text for t in g.toks[start + 1 : g.i]]
     lemmas = [lemma_of(t) for t in g.toks[start + 1 : g.i]]
     own = _before_place(g.toks[start + 1 : g.i])
@@ -230,7 +232,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
-    if sense is not None and _fetches_particular(tok, obj, words):
+    if sense is not None and _fetches_particular(tok, obj, words) and not _by_means(g, start):
         # "bring the juice", "grab me a soda from the fridge": a thing to carry; what
         # it is for only hedges where to look
         assert obj is not None
@@ -249,7 +251,13 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
     # "use the toilet close to the bookshelf", "get a drink in the kitchen": the object's
     # relations and places place the target
-    where = [c for c in obj.constraints if _places_target(c, obj)] if obj is not None else []
+    # but with "what could I use to get the creases out of my shirt" the object is what
+    # the thing sought acts on, and where the object is says nothing of where it is
+    where = (
+        [c for c in obj.constraints if _places_target(c, obj)]
+        if obj is not None and not _by_means(g, start)
+        else []
+    )
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
 
@@ -372,6 +380,27 @@ def lemma_of(tok: Tok) -> str:
 _KEEP_VERBS = frozenset({"keep", "store"})
 
 
+def _take_source(g: Grammar) -> None:
+    """Read "out of my shirt" / "off the sofa" after the object of a verb that says what a
+    thing sought is used for ("… use to get the creases out of my shirt"): where the
+    object is taken from belongs to the errand, not to the thing sought."""
+    k = 2 if g.text_at() == "out" and g.text_at(1) == "of" else 1
+    if g.text_at() in ("out", "off") and g.np_start(k):
+        for _ in range(k):
+            g.advance()
+        g.parse_np(landmark=True)
+
+
+def _by_means(g: Grammar, start: int) -> bool:
+    """Whether the verb at ``start`` says what a thing asked for is used to do ("what
+    could I use to get the creases out", "something to get the stain off"): "to" before
+    it, and "use" or an open "something" / "anything" / "what" before that."""
+    if start < 2 or g.toks[start - 1].text != "to":
+        return False
+    before = g.toks[max(0, start - 5) : start - 1]
+    return any(t.lemma == "use" or t.text in ("something", "anything", "what") for t in before)
+
+
 def _asks_where(g: Grammar, start: int) -> bool:
     """Whether the clause before token ``start`` asks "where" ("where do we keep …")."""
     return any(t.text == "where" for t in g.toks[:start])
@@ -396,6 +425,8 @@ def _past(g: Grammar, start: int) -> bool:
     tok = g.toks[start]
     if tok.tag in ("VBD", "VBN"):
         return True
+    if start > 0 and g.toks[start - 1].text == "to":
+        return False  # "I have to change the bulb": a duty, not something done
     before = g.toks[max(0, start - 3) : start]
     return any(t.text in ("did", "had", "have", "has") for t in before)
 
