@@ -160,10 +160,21 @@ def scene_then_target(
     if not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in later):
         return True  # "pillow on the left side of it, white"
     said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]
-    described = any(_describes(c) for c in said)
+    described = any(_describes(c) for c in said) or _says_what_it_is(later)
     # "the chair …" or, typed, "coffee table in front of it …" (not "a table is beside it")
     named_first = later[0].text == "the" or later[0].pos in ("NOUN", "PROPN", "ADJ")
     return described and named_first and (by_name or _it_in_subject(later))
+
+
+def _says_what_it_is(sentence: list[Word]) -> bool:
+    """Whether a sentence's subject is said to be a kind of thing ("the picture on the
+    wall above it is a landscape painting", "the desk in front of it is the teachers
+    desk"): a finite "be" followed by a determiner and, later, a noun."""
+    for k, word in enumerate(sentence[:-2]):
+        if word.lemma == "be" and word.tag in FINITE:
+            after = sentence[k + 1 :]
+            return after[0].text in ("a", "an", "the") and any(w.pos == "NOUN" for w in after)
+    return False
 
 
 def _describes(constraint: Constraint) -> bool:

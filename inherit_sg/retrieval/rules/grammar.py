@@ -1074,18 +1074,20 @@ class Grammar(Cursor):
 
     # ---------------------------------------------------------- prepositions
     def _side_of(self, lm: NP) -> NP:
-        """ "on the back of the chair", "on the side of the fridge": a side of a thing
-        names no landmark of its own; the thing after "of" is the landmark."""
+        """ "on the back of the chair", "on the side of the fridge", "at the far end of
+        it": a side of a thing names no landmark of its own; the thing after "of" is the
+        landmark."""
         k = 1 if self.at("dir", "side") else 0  # "the back" leaves "back" unread
         if lm.kind != ONE or lm.labels or not self.at("of", k=k) or not self.np_start(k + 1):
             return lm
         snap = self.state()
         self.i += k + 1
         thing = self.parse_np(landmark=True)
-        if thing is None or thing.kind != OBJECT or not thing.labels:
+        named = thing is not None and thing.kind == OBJECT and bool(thing.labels)
+        if thing is None or not (named or thing.kind == ANAPHOR):
             self.restore(snap)
             return lm
-        return thing
+        return thing  # "at the far end of it": the thing said before
 
     def parse_pp(self, predicate: str | None = None) -> list[Constraint] | None:
         """A prepositional phrase → constraints (empty for deictic places); None when
