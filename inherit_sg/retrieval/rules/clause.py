@@ -41,6 +41,7 @@ from inherit_sg.retrieval.rules.phrase import (
 )
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab import objects as object_vocab
+from inherit_sg.vocab.colours import colour_words
 from inherit_sg.vocab.lexicon import lexicon
 
 _SKIP = (
@@ -878,7 +879,9 @@ class ClauseParser(Grammar):
         for j in range(self.i - 1, -1, -1):
             tok = self.toks[j]
             if tok.has("neg"):
-                return True
+                # "can't remember if it is wood or plastic": what is not known, not ruled out
+                after = self.toks[j + 1] if j + 1 < len(self.toks) else None
+                return after is None or after.lemma not in lexicon().mental_verbs
             if tok.has("comma", "and", "but", "sub"):
                 return False
         return False
@@ -1102,7 +1105,7 @@ class ClauseParser(Grammar):
         elif np.kind == OBJECT and np.labels and head.kind in (GENERIC, GENERIC_AREA, VAGUE):
             np.constraints = head.constraints + np.constraints
             out.head = np
-        elif coordinated and np.kind == OBJECT and head.kind == OBJECT:
+        elif coordinated and np.kind == OBJECT and head.kind == OBJECT and not _only_a_look(np):
             head.labels += [x for x in np.labels if x not in head.labels]
             head.words += ["or", *np.words]
             head.constraints += np.constraints
@@ -1167,3 +1170,11 @@ class ClauseParser(Grammar):
                 text=np.noun, beside=np.beside,
             )  # fmt: skip
         return AreaConstraint(label=np.noun, negated=neg, weight=self.weight("area"), text=np.noun)
+
+
+def _only_a_look(np: NP) -> bool:
+    """Whether a phrase after "or" is only a material or colour ("wood or plastic",
+    "black or dark blue"): a look the speaker is unsure of, not another kind sought."""
+    lx = lexicon()
+    words = [w for w in np.words if w not in ("a", "an", "the", "dark", "light")]
+    return bool(words) and all(w in lx.materials or w in colour_words() for w in words)

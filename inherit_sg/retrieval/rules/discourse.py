@@ -24,7 +24,8 @@ from inherit_sg.retrieval.constraints import (
     Superlative,
 )
 from inherit_sg.retrieval.rules.clause import Clause
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE
+from inherit_sg.retrieval.rules.grammar import Grammar
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE, ROOM
 from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import Word
@@ -382,3 +383,38 @@ def asks_for_object(more: Clause) -> bool:
     closest to my right hand?", "Is the radiator behind me?")."""
     head = more.head
     return head is not None and head.kind == OBJECT and bool(head.labels) and not more.head_negated
+
+
+def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str]) -> None:
+    """ "which room has the piano?", "which bedroom has the crib?", "which room is the
+    recycling bin in": the question is answered by finding the thing, so the thing is the
+    target and a room kind the question names ("bedroom") places it. A room asked for by
+    what it lacks ("which bathroom doesn't have a bathtub") stays the target. In place."""
+    head = clause.head
+    if head is None or head.kind != ROOM or clause.head_negated or not sentence:
+        return
+    if sentence[0].text not in ("which", "what"):
+        return
+    held = [
+        c
+        for c in head.constraints
+        if isinstance(c, RelationConstraint) and c.predicate == "contains"
+    ]
+    if len(held) != 1 or held[0].negated or not held[0].landmark.target.labels:
+        return
+    target = held[0].landmark.target
+    if not any(canonical_label(label) for label in target.labels):
+        return  # "which room gets the most sun": no thing to find
+    thing = NP(
+        kind=OBJECT,
+        labels=list(target.labels),
+        words=target.noun.split(),
+        constraints=list(held[0].landmark.constraints),
+        plural=target.plural,
+        known=True,
+    )
+    rest = [c for c in head.constraints if c is not held[0] and c.kind not in ("label",)]
+    room = [Grammar.room_place(head)] if head.labels else []
+    thing.places = [*room, *rest, *head.places]
+    notes.append(f"'{sentence[0].text} {head.noun} …': found by finding {target.noun!r}")
+    clause.head = thing

@@ -34,6 +34,7 @@ from inherit_sg.retrieval.rules.discourse import (
     split_scene,
     statement_then_request,
     states_absence,
+    thing_the_room_holds,
 )
 from inherit_sg.retrieval.rules.frames import global_reason, refine_frame
 from inherit_sg.retrieval.rules.grammar import Grammar
@@ -369,6 +370,8 @@ def parse_uncached(text: str) -> ParsedQuery:
         clause.implied.append(unknown_problem)
     if sentences and denies_first(sentences[0]):
         _denied_details(clause, notes)
+    if len(sentences) == 1:
+        thing_the_room_holds(clause, sentences[0], notes)
     point_it_at_view(clause)
     return assemble(text, clause, refine, notes, [w.text for w in words])
 

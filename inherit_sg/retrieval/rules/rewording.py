@@ -127,6 +127,7 @@ def only_thing(sentence: list[Word]) -> list[Word]:
 
 _NOTICING = frozenset({"see", "notice", "spot", "remember", "know", "realise", "realize"})
 _NEGATIONS = frozenset({"not", "never", "n't"})
+_GONE = frozenset({"be", "go", "visit"})
 _REMARK_OBJECTS = frozenset({"it", "them", "that", "this", "any", "anything", "another"})
 _REMARK_ENDS = frozenset({",", "but", "so", ";"})
 
@@ -134,7 +135,8 @@ _REMARK_ENDS = frozenset({",", "but", "so", ";"})
 def without_noticing_remark(sentence: list[Word]) -> list[Word]:
     """The sentence without an opening remark on what the speaker did not notice or see
     ("never noticed it before but there's a small fan …", "I don't see any other
-    plants, it's the tall one …"); unchanged when nothing follows the remark."""
+    plants, it's the tall one …") or where they have never been ("I've never been up in
+    the attic, is there …"); unchanged when nothing follows the remark."""
     texts = [w.text for w in sentence]
     k = 1 if texts[:1] in (["i"], ["we"]) else 0
     while k < len(texts) and texts[k] in ("do", "did", "have", "had", "can", "could"):
@@ -142,11 +144,14 @@ def without_noticing_remark(sentence: list[Word]) -> list[Word]:
     if k >= len(texts) or texts[k] not in _NEGATIONS:
         return sentence
     k += 1
-    if k + 1 >= len(texts) or sentence[k].lemma not in _NOTICING:
+    if k + 1 >= len(texts):
         return sentence
-    if texts[k + 1] not in _REMARK_OBJECTS:
+    # "I've never been up in the attic, is there a rocking horse up there?": where the
+    # speaker has never been is no place ruled out
+    been = k > 0 and sentence[k].lemma in _GONE and texts[0] in ("i", "we")
+    if not been and (sentence[k].lemma not in _NOTICING or texts[k + 1] not in _REMARK_OBJECTS):
         return sentence
-    if texts[k + 1] == "any" and texts[k + 2 : k + 3] != ["other"]:
+    if not been and texts[k + 1] == "any" and texts[k + 2 : k + 3] != ["other"]:
         return sentence  # "I don't see any towels": the towels are what is missing
     end = next((j for j in range(k + 2, len(texts)) if texts[j] in _REMARK_ENDS), None)
     if end is None:
@@ -181,18 +186,46 @@ def _remarks_on_others(clause: list[Word]) -> bool:
     return False
 
 
+def _after_room_remark(clause: list[Word]) -> int:
+    """Where a clause goes on after a remark on the room's size that it opens with ("it's
+    not a big room so the water cooler is easy to find"): the word after "so" / "but" /
+    "and"; 0 when it opens otherwise."""
+    texts = [w.text for w in clause]
+    if texts[:3] != ["it", "is", "not"]:
+        return 0
+    end = next((k for k, t in enumerate(texts) if t in ("so", "but", "and")), len(texts))
+    if end > 7 or end + 1 >= len(texts) or texts[end - 1] not in _ROOM_WORDS:
+        return 0
+    return end + 1
+
+
 def without_remarks_on_others(sentences: list[list[Word]]) -> list[list[Word]]:
     """The request without the clauses and sentences that only remark on the other
     things there (see :func:`_remarks_on_others`), where something else is said."""
     out: list[list[Word]] = []
+    if sentences:
+        sentences = [_only_one_there(sentences[0]), *sentences[1:]]
     for sentence in sentences:
         clauses = _clauses(sentence)
-        kept = [c for c in clauses if not _remarks_on_others(c)]
-        if len(kept) == len(clauses):
+        kept = [c[_after_room_remark(c) :] for c in clauses if not _remarks_on_others(c)]
+        if kept == clauses:
             out.append(sentence)
         elif kept:
             out.append([w for k, c in enumerate(kept) for w in ([COMMA] if k else []) + c])
     return out if any(out) else sentences
+
+
+def _only_one_there(sentence: list[Word]) -> list[Word]:
+    """A request that opens "there is no other coat rack in the room. It is the tall …"
+    names its target's kind there: read as "there is a coat rack in the room"."""
+    texts = [w.text for w in sentence[:4]]
+    if (
+        texts[:1] != ["there"]
+        or texts[1:2] not in (["is"], ["are"])
+        or texts[2:] != ["no", "other"]
+    ):
+        return sentence
+    return [*sentence[:2], _A, *sentence[4:]]
 
 
 def _clauses(sentence: list[Word]) -> list[list[Word]]:

@@ -558,12 +558,19 @@ def _only_unsure(sentence: list[Word], following: list[Word]) -> bool:
 
 
 def _points_back(words: list[Word]) -> bool:
-    """Whether ``words`` speak of a thing said before ("can you find it"); "it is the
-    tall lamp" names its own."""
-    return any(
-        w.text in IT_WORDS and not (k + 1 < len(words) and words[k + 1].lemma == "be")
-        for k, w in enumerate(words)
-    )
+    """Whether ``words`` speak of a thing said before ("can you find it", "it's on the
+    round table"); "it is the tall lamp" names its own."""
+    for k, w in enumerate(words):
+        if w.text not in IT_WORDS:
+            continue
+        if not (k + 1 < len(words) and words[k + 1].lemma == "be"):
+            return True
+        j = k + 2
+        while j < len(words) and words[j].pos == "ADV":
+            j += 1  # "it's right next to …"
+        if j < len(words) and words[j].pos == "ADP":
+            return True  # placed, not named: the thing is the one said before
+    return False
 
 
 def _without_asides(sentences: list[list[Word]]) -> list[list[Word]]:

@@ -105,6 +105,14 @@ def _vowel_slip(word: str, name: str) -> bool:
     return a in _VOWELS and b in _VOWELS and len(word) - i <= 3
 
 
+def _slip_from_end(word: str, name: str) -> int:
+    """How far from the word's end a vowel slip ("sofe" → "sofa": 1) lies; the word's
+    length when ``name`` is no vowel slip of it."""
+    if not _vowel_slip(word, name):
+        return len(word)
+    return next(len(word) - i for i, (a, b) in enumerate(zip(word, name, strict=True)) if a != b)
+
+
 def _misspelt_name(word: str) -> str | None:
     """The thing's name that a rare real word of five letters or more misspells by one
     vowel ("calender" → "calendar"), or None."""
@@ -135,9 +143,18 @@ def correct_word(word: str) -> str | None:
     if not found:
         return None
     vocab = vocabulary_words()
-    # A dropped letter is the commonest slip: "towl" is a towel before it is a tool.
+    # A dropped letter is the commonest slip: "towl" is a towel before it is a tool; and
+    # a thing's name one unstressed vowel away beats a commoner word ("sofe": sofa, not
+    # some).
+    names = _object_words()
     best = sorted(
-        found, key=lambda s: (s.term not in vocab, len(s.term) != len(word) + 1, -s.count)
+        found,
+        key=lambda s: (
+            _slip_from_end(word, s.term) if s.term in names else len(word),
+            s.term not in vocab,
+            len(s.term) != len(word) + 1,
+            -s.count,
+        ),
     )[0]
     swapped = sorted(best.term) == sorted(word)
     # "dsk" → "desk": a dropped letter of a thing's name (three-letter words only)

@@ -600,6 +600,9 @@ def tag(words: list[Word]) -> list[Tok]:
             i += n
         else:
             tok = _single(words[i], first)
+            if tok.has("modal") and _noun_after_determiner(words, i):
+                tok.tags = {"unk": words[i].text}  # "an empty can on the desk": a thing
+                tok.pos, tok.tag = "NOUN", "NN"
             if first and _verb_before_object(words, i) and tok.has("unk"):
                 # "… and dust the bookcase": spaCy's noun is the command's verb
                 tok.tags = {"overb": words[i].text, "seek": words[i].text}
@@ -650,3 +653,19 @@ def _verb_before_object(words: list[Word], i: int) -> bool:
     if i + 2 >= len(words) or words[i].tag not in ("NN", "VB", "VBP"):
         return False
     return words[i].dep in ("ROOT", "conj") and words[i + 1].text in _OBJECT_DETERMINERS
+
+
+def _noun_after_determiner(words: list[Word], i: int) -> bool:
+    """Whether a word spaCy took for a modal stands in a noun phrase ("an empty can",
+    "the can"): after a determiner, or an adjective after one, and not before a verb."""
+    if words[i].text != "can":
+        return False  # the one modal that is also a thing
+    j = i - 1
+    while j >= 0 and (
+        words[j].pos in ("ADJ", "NOUN") or words[j].text in colour_vocab.colour_words()
+    ):
+        j -= 1  # "an empty can", "the red can" (spaCy's proper noun), "the gas can"
+    after = words[i + 1] if i + 1 < len(words) else None
+    if after is not None and (after.tag == "VB" or after.text in ("not", "n't", "also")):
+        return False  # "this can be moved", "the kids can't reach it"
+    return j >= 0 and j < i and words[j].pos == "DET" and words[j].text not in ("that", "this")

@@ -171,7 +171,7 @@ _PLACE_WORDS = (
 )
 _ABSENT_FROM = re.compile(
     r"\b(?:there (?:is|are|was|were) no|(?:the|this) room (?:has|contains) no|^no) "
-    r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason|no|the|a|an)\b)"
+    r"(?!(?:doubt|question|need|way|problem|rush|hurry|chance|matter|idea|reason|no|the|a|an|other)\b)"
     r"((?:\w+ ){0,3}?\w+) (?:(?:is|are) )?(" + _PLACE_WORDS + r") (?!this\b|these\b|here\b)",
     re.IGNORECASE,
 )
