@@ -102,7 +102,8 @@ def statement_then_request(
     assert more.head is not None
     if _object_is_it(later):
         return False  # "The charger is in the conference room, can you bring it to my desk"
-    return _is_statement(first) and _is_request(later) and not same_thing(head, more.head)
+    asks = _is_request(later) or (later[0].text in QUESTION_OPENERS and later[0].text != "is")
+    return _is_statement(first) and asks and not same_thing(head, more.head)
 
 
 def states_absence(sentence: list[Word]) -> bool:
@@ -198,10 +199,12 @@ def split_scene(sentence: list[Word]) -> list[list[Word]]:
         if word.text != "," or j < 2 or j + 3 >= len(sentence):
             continue
         after = sentence[j + 1 :]
-        if after[0].text != "the" and after[0].pos != "ADP":
+        asks = after[0].text in ("how", "what", "which", "where")  # ", how many chairs …"
+        if after[0].text != "the" and after[0].pos != "ADP" and not asks:
             continue
         own_verb = any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in after)
-        if own_verb and _sets_scene(sentence[:j]) in ("there", "fragment"):
+        scene = _sets_scene(sentence[:j])
+        if own_verb and (scene == "there" or (scene == "fragment" and not asks)):
             return [sentence[:j], after]
     return [sentence]
 

@@ -50,6 +50,7 @@ from inherit_sg.retrieval.rules.phrase import (
 )
 from inherit_sg.retrieval.rules.problems import open_problem, split_problem
 from inherit_sg.retrieval.rules.rewording import called_off
+from inherit_sg.retrieval.rules.route import route_goal
 from inherit_sg.retrieval.rules.sentences import (
     CORRECTION_WORDS,
     comma_after_denied_thing,
@@ -259,7 +260,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
     analysed, fixes = analyse_text(text)
-    problem, sentences = split_problem(called_off(analysed))
+    problem, sentences = split_problem(route_goal(called_off(analysed)))
     unknown_problem = open_problem(analysed) if problem is None else None
     words = _flat(sentences)
     reason = global_reason(words) if words or problem is None else None
@@ -284,6 +285,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     sentences = prepare(sentences)
     clause = Clause()
     situation = False
+    placed_speaker = False  # a first sentence only said where the speaker is
     said_again = False  # a later sentence said more of the target ("… It is white.")
     for n, sentence in enumerate(sentences):
         tokens = tag(sentence)
@@ -313,6 +315,15 @@ def parse_uncached(text: str) -> ParsedQuery:
                     kind="from", landmark=clause.head.landmark(), text=clause.head.noun
                 )
             clause, situation = more, False
+            continue
+        if situation and more.head is None and sentence[0].text in ("what", "which"):
+            # "I am sitting on the couch watching the tv. What is behind me?": the first
+            # sentence places the speaker; the question asks for whatever is there
+            notes.append("the first sentence places the speaker; the question names no thing")
+            if more.viewpoint is None and clause.viewpoint is not None:
+                more.viewpoint = clause.viewpoint
+            clause, situation, placed_speaker = more, False, True
+            words = _flat(sentences[n:])  # what the speaker does says no need
             continue
         situation = False
         if not correcting and statement_then_request(clause, sentences[0], more, sentence):
@@ -365,7 +376,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads
-    elif unknown_problem is not None and _asks_only_for_help(clause):
+    elif unknown_problem is not None and not placed_speaker and _asks_only_for_help(clause):
         notes.append(f"the statement {unknown_problem.text!r} says what is needed (by meaning)")
         clause.implied.append(unknown_problem)
     if sentences and denies_first(sentences[0]):

@@ -88,6 +88,8 @@ def _is_statement(words: list[Word]) -> bool:
         return False
     if first.pos in ("VERB", "AUX"):
         return False  # "head to the gym" asks; it states no problem
+    if first.pos == "DET" and not any(w.pos in ("VERB", "AUX") for w in words):
+        return False  # "the treadmill closest to the window in the gym": a thing named
     if any(w.dep == "ROOT" and w.pos in ("NOUN", "PROPN") for w in words) and any(
         w.dep == "acl" for w in words
     ):

@@ -1,0 +1,152 @@
+"""Route instructions that end at a thing (Room-to-Room, RxR, REVERIE style): "Exit the
+office and go left. Walk down the hallway and go into the bathroom on your right. Stop at
+the tub."
+
+The rooms, doors and landmarks passed on the way are not what is sought: the thing the
+route ends at is ("stop at / by / in front of …", "wait by …", "stop once you reach …").
+:func:`route_goal` reduces such a request to that phrase, in the last room the route
+enters when the phrase names none ("… into the bathroom … Stop at the tub" → "the tub in
+the bathroom"). What the route says on the way ("don't go up the stairs") then rules
+nothing out about the goal.
+"""
+
+from __future__ import annotations
+
+from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.vocab.rooms import room_words
+
+# Verbs that end a route, and the words between them and the goal phrase.
+_STOPPING = frozenset({"stop", "wait", "halt", "pause", "finish"})
+_GOAL_WORDS = frozenset({
+    "at", "by", "beside", "near", "next", "to", "in", "on", "under", "behind", "facing",
+    "beneath", "below", "underneath", "above", "over", "inside", "opposite", "against",
+    "front", "of", "right", "just", "directly", "once", "when", "as", "soon", "you",
+    "reach", "get", "until", "the", "a", "an",
+})  # fmt: skip
+_REACHING = frozenset({"reach", "get"})
+# Words that place a thing beside a room's … ("the porch next to the flower pot").
+_BESIDE = frozenset({"next", "by", "beside", "near", "front", "behind", "under", "facing",
+                     "opposite", "against", "beneath", "below", "underneath"})  # fmt: skip
+# Words before a room that say the route goes into it ("into the bathroom", "enter the den").
+_ENTERING = frozenset({"into", "to", "in", "enter", "inside", "reach", "toward", "towards"})
+_IN = Word("in", "in", "ADP", "IN", "prep")
+_THE = Word("the", "the", "DET", "DT", "det")
+
+
+def route_goal(sentences: list[list[Word]]) -> list[list[Word]]:
+    """The request reduced to the goal of the route it describes (see the module
+    docstring); unchanged when it names no stop at a thing."""
+    flat = [w for sentence in sentences for w in sentence]
+    found = _goal_start(flat)
+    if found is None:
+        return sentences
+    stop, start = found
+    goal = list(flat[start:])
+    while goal and goal[-1].text in (".", "!", "?"):
+        goal.pop()
+    if not goal or not any(w.pos in ("NOUN", "PROPN") for w in goal):
+        return sentences
+    goal = _past_room(_past_position(goal))
+    if not goal or _opens_with_room(goal):
+        return sentences  # "wait in the break room": a room, not a thing
+    if not _names_room(goal):
+        room = _last_room_entered(flat[:stop])
+        if room:
+            goal += [_IN, _THE, *room]
+    return [goal]
+
+
+def _past_room(goal: list[Word]) -> list[Word]:
+    """ "the porch next to the flower pot on the top step": a goal that opens with a room
+    and places a thing in it is that thing, in that room."""
+    j = 1 if goal[0].text in ("the", "a", "an") else 0
+    for n in (3, 2, 1):
+        room = goal[j : j + n]
+        if len(room) == n and _is_room_phrase([w.text for w in room]):
+            k = j + n
+            while k < len(goal) and goal[k].text in _GOAL_WORDS - {"the", "a", "an"}:
+                k += 1
+            lead = {w.text for w in goal[j + n : k]}
+            if k >= len(goal) or not lead & _BESIDE:
+                return goal  # "the break room on level 2" stays a room
+            return [*goal[k:], _IN, _THE, *room]
+    return goal
+
+
+_POSITIONS = frozenset({"top", "bottom", "foot", "end", "middle", "side", "edge", "head"})
+
+
+def _past_position(goal: list[Word]) -> list[Word]:
+    """ "the foot of the bed", "the end of the hallway": the thing or place itself."""
+    j = 1 if goal[0].text in ("the", "a", "an") else 0
+    if len(goal) > j + 2 and goal[j].text in _POSITIONS and goal[j + 1].text == "of":
+        return goal[j + 2 :]
+    return goal
+
+
+def _opens_with_room(goal: list[Word]) -> bool:
+    """Whether a goal phrase is a room or a part of the building ("the break room on
+    level 2", "the stairs")."""
+    head = []
+    for word in goal:
+        if word.pos == "ADP":
+            break
+        head.append(word.text)
+    return bool(head) and (
+        head[-1] in ("room", "rooms") or any(_is_room_phrase(head[i:]) for i in range(len(head)))
+    )
+
+
+def _goal_start(words: list[Word]) -> tuple[int, int] | None:
+    """Where the last stopping verb of a route stands and where its goal phrase starts
+    (the first word after the words that lead to it), or None."""
+    for k in range(len(words) - 1, -1, -1):
+        if words[k].lemma not in _STOPPING or words[k].pos not in ("VERB", "NOUN", "PROPN"):
+            continue
+        if k > 0 and words[k - 1].text in ("bus", "the", "a"):
+            continue  # "the bus stop"
+        j = k + 1
+        led = False
+        while j < len(words) and words[j].text in _GOAL_WORDS:
+            led = led or words[j].text not in ("the", "a", "an", "right", "just", "directly")
+            if words[j].lemma in _REACHING:
+                led = True
+            j += 1
+        if not led or j >= len(words) or words[j].tag == "VB":
+            return None  # "can't wait to try the new coffee machine"
+        start = j
+        while start > k + 1 and words[start - 1].text in ("the", "a", "an"):
+            start -= 1  # keep the determiner: "the tub"
+        return k, start
+    return None
+
+
+def _names_room(words: list[Word]) -> bool:
+    """Whether a phrase names a room ("… in the gym", "on the landing")."""
+    texts = [w.text for w in words]
+    return any(
+        _is_room_phrase(texts[i : i + n]) for n in (1, 2, 3) for i in range(len(texts) - n + 1)
+    )
+
+
+def _is_room_phrase(texts: list[str]) -> bool:
+    """Whether ``texts`` is itself a room name or alias, not a longer phrase ending in one."""
+    return " ".join(texts) in room_words()
+
+
+def _last_room_entered(words: list[Word]) -> list[Word]:
+    """The words of the last room the route goes into ("into the bathroom", "enter the
+    master bedroom"), or none."""
+    best: list[Word] = []
+    for k, word in enumerate(words):
+        if word.text not in _ENTERING:
+            continue
+        j = k + 1
+        while j < len(words) and words[j].text in ("the", "a", "an", "first", "second", "next"):
+            j += 1
+        for n in (3, 2, 1):
+            phrase = words[j : j + n]
+            if len(phrase) == n and _is_room_phrase([w.text for w in phrase]):
+                best = phrase
+                break
+    return best
