@@ -51,6 +51,11 @@ def engine(map_dir: Path) -> Iterator[QueryEngine]:
         ("the biggest mug in the kitchen", "obj:m1"),
         ("something to sit on in the bedroom", "obj:c3"),
         ("a table without anything on it", "obj:t2"),
+        (
+            "Walk past the sofa, don't go into the kitchen, go upstairs and stop at the chair.",
+            "obj:c3",
+        ),
+        ("which room has the bed?", "obj:bd1"),
     ],
 )
 def test_known_answers(engine: QueryEngine, text: str, expected: str) -> None:

@@ -12,7 +12,7 @@ nothing out about the goal.
 
 from __future__ import annotations
 
-from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.rooms import room_words
 
 # Verbs that end a route, and the words between them and the goal phrase.
@@ -53,7 +53,38 @@ def route_goal(sentences: list[list[Word]]) -> list[list[Word]]:
         room = _last_room_entered(flat[:stop])
         if room:
             goal += [_IN, _THE, *room]
+    floor = _floor_reached(flat[:stop])
+    if floor is not None and not any(w.text in _FLOOR_WORDS for w in goal):
+        goal = [floor, COMMA, *goal]  # "upstairs, the umbrella stand by the front door"
     return [goal]
+
+
+_FLOOR_WORDS = frozenset({"upstairs", "downstairs", "floor", "level", "storey", "story"})
+_UPSTAIRS = Word("upstairs", "upstairs", "ADV", "RB", "advmod")
+_DOWNSTAIRS = Word("downstairs", "downstairs", "ADV", "RB", "advmod")
+
+
+def _floor_reached(route: list[Word]) -> Word | None:
+    """ "upstairs" / "downstairs" when the route last goes up or down a floor ("go up the
+    stairs", "head downstairs"), else None."""
+    found = None
+    for k, word in enumerate(route):
+        if _negated_at(route, k):
+            continue
+        after = " ".join(w.text for w in route[k + 1 : k + 3])
+        if word.text == "upstairs" or (word.text == "up" and after in ("the stairs", "the steps")):
+            found = _UPSTAIRS
+        elif word.text == "downstairs" or (
+            word.text == "down" and after in ("the stairs", "the steps")
+        ):
+            found = _DOWNSTAIRS
+    return found
+
+
+def _negated_at(words: list[Word], k: int) -> bool:
+    """Whether the route step around word ``k`` is one the speaker warns against ("don't
+    go into the kitchen", "avoid the stairs")."""
+    return any(w.text in ("not", "n't", "never", "avoid") for w in words[max(0, k - 3) : k])
 
 
 def _past_room(goal: list[Word]) -> list[Word]:
@@ -139,7 +170,7 @@ def _last_room_entered(words: list[Word]) -> list[Word]:
     master bedroom"), or none."""
     best: list[Word] = []
     for k, word in enumerate(words):
-        if word.text not in _ENTERING:
+        if word.text not in _ENTERING or _negated_at(words, k):
             continue
         j = k + 1
         while j < len(words) and words[j].text in ("the", "a", "an", "first", "second", "next"):
