@@ -7,7 +7,8 @@ route ends at is ("stop at / by / in front of …", "wait by …", "stop once yo
 :func:`route_goal` reduces such a request to that phrase, in the last room the route
 enters when the phrase names none ("… into the bathroom … Stop at the tub" → "the tub in
 the bathroom"). What the route says on the way ("don't go up the stairs") then rules
-nothing out about the goal.
+nothing out about the goal, and when the route last went up or down the stairs the goal
+is upstairs or downstairs.
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ _GOAL_WORDS = frozenset({
     "reach", "get", "until", "the", "a", "an",
 })  # fmt: skip
 _REACHING = frozenset({"reach", "get"})
-# Words that place a thing beside a room's … ("the porch next to the flower pot").
+# Words after a room that place the goal by a thing in it ("the porch next to the flower
+# pot": the flower pot).
 _BESIDE = frozenset({"next", "by", "beside", "near", "front", "behind", "under", "facing",
                      "opposite", "against", "beneath", "below", "underneath"})  # fmt: skip
 # Words before a room that say the route goes into it ("into the bathroom", "enter the den").
