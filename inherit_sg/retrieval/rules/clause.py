@@ -770,8 +770,11 @@ class ClauseParser(Grammar):
 
     def _mental_after(self) -> bool:
         """Whether a verb of knowing follows ("can't remember", "don't know")."""
-        tok = self.peek()
-        return tok is not None and tok.lemma in lexicon().mental_verbs
+        return self._mental_at(self.i)
+
+    def _mental_at(self, k: int) -> bool:
+        """Whether token ``k`` is a verb of knowing."""
+        return k < len(self.toks) and self.toks[k].lemma in lexicon().mental_verbs
 
     @staticmethod
     def _negate_head_places(out: Clause) -> None:
@@ -880,8 +883,7 @@ class ClauseParser(Grammar):
             tok = self.toks[j]
             if tok.has("neg"):
                 # "can't remember if it is wood or plastic": what is not known, not ruled out
-                after = self.toks[j + 1] if j + 1 < len(self.toks) else None
-                return after is None or after.lemma not in lexicon().mental_verbs
+                return not self._mental_at(j + 1)
             if tok.has("comma", "and", "but", "sub"):
                 return False
         return False

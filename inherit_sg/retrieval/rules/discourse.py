@@ -416,7 +416,7 @@ def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str])
         plural=target.plural,
         known=True,
     )
-    rest = [c for c in head.constraints if c is not held[0] and c.kind not in ("label",)]
+    rest = [c for c in head.constraints if c is not held[0] and c.kind != "label"]
     room = [Grammar.room_place(head)] if head.labels else []
     thing.places = [*room, *rest, *head.places]
     notes.append(f"'{sentence[0].text} {head.noun} …': found by finding {target.noun!r}")

@@ -32,14 +32,13 @@
 
 from __future__ import annotations
 
-from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.retrieval.rules.tokens import COMMA, THE, A, Word
 from inherit_sg.vocab.colours import colour_words
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label
 
 _SIDE_PREPOSITIONS = frozenset({"to", "on", "at", "by"})
 _SIDES = frozenset({"left", "right"})
-_THE = Word("the", "the", "DET", "DT", "det")
 _SIDE = Word("side", "side", "NOUN", "NN", "pobj")
 _OF = Word("of", "of", "ADP", "IN", "prep")
 _IT = Word("it", "it", "PRON", "PRP", "pobj")
@@ -60,7 +59,7 @@ def owner_side(sentence: list[Word]) -> list[Word]:
             i += 1
             continue
         owner, side, end = found
-        out += [sentence[i], _THE, side, _SIDE, _OF, *owner]
+        out += [sentence[i], THE, side, _SIDE, _OF, *owner]
         i = end
     return out
 
@@ -225,7 +224,7 @@ def _only_one_there(sentence: list[Word]) -> list[Word]:
         or texts[2:] != ["no", "other"]
     ):
         return sentence
-    return [*sentence[:2], _A, *sentence[4:]]
+    return [*sentence[:2], A, *sentence[4:]]
 
 
 def _clauses(sentence: list[Word]) -> list[list[Word]]:
@@ -338,7 +337,6 @@ def without_moved_away(sentence: list[Word]) -> list[Word]:
 
 
 _ASKING_FOR = frozenset({"have", "get", "bring", "grab", "fetch", "need", "want", "give"})
-_A = Word("a", "a", "DET", "DT", "det")
 
 
 def another_as_one_more(sentence: list[Word]) -> list[Word]:
@@ -351,7 +349,7 @@ def another_as_one_more(sentence: list[Word]) -> list[Word]:
         if sentence[j].text in ("me", "us") and j > 0:
             j -= 1
         if sentence[j].lemma in _ASKING_FOR and sentence[j].pos in ("VERB", "AUX"):
-            out[i] = _A
+            out[i] = A
     return out
 
 

@@ -13,7 +13,7 @@ is upstairs or downstairs.
 
 from __future__ import annotations
 
-from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.retrieval.rules.tokens import COMMA, IN, THE, Word
 from inherit_sg.vocab.rooms import room_words
 
 # Verbs that end a route, and the words between them and the goal phrase.
@@ -31,8 +31,7 @@ _BESIDE = frozenset({"next", "by", "beside", "near", "front", "behind", "under",
                      "opposite", "against", "beneath", "below", "underneath"})  # fmt: skip
 # Words before a room that say the route goes into it ("into the bathroom", "enter the den").
 _ENTERING = frozenset({"into", "to", "in", "enter", "inside", "reach", "toward", "towards"})
-_IN = Word("in", "in", "ADP", "IN", "prep")
-_THE = Word("the", "the", "DET", "DT", "det")
+_ARTICLES = frozenset({"the", "a", "an"})
 
 
 def route_goal(sentences: list[list[Word]]) -> list[list[Word]]:
@@ -54,7 +53,7 @@ def route_goal(sentences: list[list[Word]]) -> list[list[Word]]:
     if not _names_room(goal):
         room = _last_room_entered(flat[:stop])
         if room:
-            goal += [_IN, _THE, *room]
+            goal += [IN, THE, *room]
     floor = _floor_reached(flat[:stop])
     if floor is not None and not any(w.text in _FLOOR_WORDS for w in goal):
         goal = [floor, COMMA, *goal]  # "upstairs, the umbrella stand by the front door"
@@ -89,20 +88,25 @@ def _negated_at(words: list[Word], k: int) -> bool:
     return any(w.text in ("not", "n't", "never", "avoid") for w in words[max(0, k - 3) : k])
 
 
+def _after_article(goal: list[Word]) -> int:
+    """Where a phrase's words start after its article ("the porch …": 1)."""
+    return 1 if goal[0].text in _ARTICLES else 0
+
+
 def _past_room(goal: list[Word]) -> list[Word]:
     """ "the porch next to the flower pot on the top step": a goal that opens with a room
     and places a thing in it is that thing, in that room."""
-    j = 1 if goal[0].text in ("the", "a", "an") else 0
+    j = _after_article(goal)
     for n in (3, 2, 1):
         room = goal[j : j + n]
         if len(room) == n and _is_room_phrase([w.text for w in room]):
             k = j + n
-            while k < len(goal) and goal[k].text in _GOAL_WORDS - {"the", "a", "an"}:
+            while k < len(goal) and goal[k].text in _GOAL_WORDS - _ARTICLES:
                 k += 1
             lead = {w.text for w in goal[j + n : k]}
             if k >= len(goal) or not lead & _BESIDE:
                 return goal  # "the break room on level 2" stays a room
-            return [*goal[k:], _IN, _THE, *room]
+            return [*goal[k:], IN, THE, *room]
     return goal
 
 
@@ -111,7 +115,7 @@ _POSITIONS = frozenset({"top", "bottom", "foot", "end", "middle", "side", "edge"
 
 def _past_position(goal: list[Word]) -> list[Word]:
     """ "the foot of the bed", "the end of the hallway": the thing or place itself."""
-    j = 1 if goal[0].text in ("the", "a", "an") else 0
+    j = _after_article(goal)
     if len(goal) > j + 2 and goal[j].text in _POSITIONS and goal[j + 1].text == "of":
         return goal[j + 2 :]
     return goal
@@ -141,14 +145,14 @@ def _goal_start(words: list[Word]) -> tuple[int, int] | None:
         j = k + 1
         led = False
         while j < len(words) and words[j].text in _GOAL_WORDS:
-            led = led or words[j].text not in ("the", "a", "an", "right", "just", "directly")
+            led = led or words[j].text not in _ARTICLES | {"right", "just", "directly"}
             if words[j].lemma in _REACHING:
                 led = True
             j += 1
         if not led or j >= len(words) or words[j].tag == "VB":
             return None  # "can't wait to try the new coffee machine"
         start = j
-        while start > k + 1 and words[start - 1].text in ("the", "a", "an"):
+        while start > k + 1 and words[start - 1].text in _ARTICLES:
             start -= 1  # keep the determiner: "the tub"
         return k, start
     return None
@@ -175,7 +179,7 @@ def _last_room_entered(words: list[Word]) -> list[Word]:
         if word.text not in _ENTERING or _negated_at(words, k):
             continue
         j = k + 1
-        while j < len(words) and words[j].text in ("the", "a", "an", "first", "second", "next"):
+        while j < len(words) and words[j].text in _ARTICLES | {"first", "second", "next"}:
             j += 1
         for n in (3, 2, 1):
             phrase = words[j : j + n]

@@ -89,6 +89,10 @@ class Word:
 
 
 COMMA = Word(",", ",", "PUNCT", ",")
+# Words the rewriting passes insert ("there is a coat rack", "the tub in the bathroom").
+THE = Word("the", "the", "DET", "DT", "det")
+A = Word("a", "a", "DET", "DT", "det")
+IN = Word("in", "in", "ADP", "IN", "prep")
 
 
 def normalise(text: str) -> str:

@@ -153,7 +153,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     elif g.np_start() and not g.at("floor"):
         obj = _objects(g, landmark=verb not in lx.light_verbs)
-    if obj is not None and _by_means(g, start):
+    by_means = _by_means(g, start)  # "what could I use to get the creases out …"
+    if obj is not None and by_means:
         _take_source(g)
     words = [t.text for t in g.toks[start + 1 : g.i]]
     lemmas = [lemma_of(t) for t in g.toks[start + 1 : g.i]]
@@ -232,7 +233,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         if obj is not None and obj.kind != ANAPHOR:
             g.notes.append(f"'{tok.text} {obj.noun or obj.kind}': the object is the target")
         return [], obj
-    if sense is not None and _fetches_particular(tok, obj, words) and not _by_means(g, start):
+    if sense is not None and _fetches_particular(tok, obj, words) and not by_means:
         # "bring the juice", "grab me a soda from the fridge": a thing to carry; what
         # it is for only hedges where to look
         assert obj is not None
@@ -255,7 +256,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     # the thing sought acts on, and where the object is says nothing of where it is
     where = (
         [c for c in obj.constraints if _places_target(c, obj)]
-        if obj is not None and not _by_means(g, start)
+        if obj is not None and not by_means
         else []
     )
     places = list(obj.places) if obj is not None else []
