@@ -82,6 +82,9 @@ _SWITCH_VERBS = frozenset({"turn", "switch", "shut", "power", "flip", "flick"})
 # front door", "stand next to the bookshelf").
 _WAIT_VERBS = frozenset({"stand", "wait", "stay", "park", "stop"})
 _BESIDE = frozenset({"next to", "by", "near", "beside", "at", "in front of", "close to"})
+# Where one is asked to stand or wait: "stand on the rug", "wait behind the sofa" (not
+# "a speaker standing on the floor").
+_WAIT_PLACES = _BESIDE | {"on", "behind", "under", "beneath", "opposite"}
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
@@ -460,7 +463,7 @@ class ClauseParser(Grammar):
         if (
             tok.lemma in _WAIT_VERBS
             and nxt is not None
-            and nxt.text in _BESIDE
+            and (nxt.text in _BESIDE or (nxt.text in _WAIT_PLACES and tok.text == tok.lemma))
             and self.np_start(1)
         ):
             self.advance()  # "stand next to the bookshelf": the bookshelf is where to go

@@ -437,3 +437,35 @@ def non_words(sentence: list[Word]) -> list[Word]:
         out.append(word)
         i += 1
     return out
+
+
+_FLOOR_NOUNS = frozenset({"floor", "level", "storey", "story"})
+_IS = frozenset({"is", "are", "'s"})
+_ON = frozenset({"on", "in"})
+_ENDS = frozenset({".", "?", "!"})
+_MOST = frozenset({"most", "more", "fewest", "least", "fewer"})
+
+
+def floor_asked(sentence: list[Word]) -> list[Word]:
+    """ "which floor is the laundry room on?", "on what level is the piano", "which
+    storey has the sauna": the floor is found by finding the thing, so the request is
+    that thing ("the laundry room")."""
+    texts = [w.text for w in sentence]
+    while texts and texts[-1] in _ENDS:
+        texts.pop()
+    k = 1 if texts[:1] in (["on"], ["in"]) else 0
+    if len(texts) < k + 4 or texts[k] not in ("which", "what") or texts[k + 1] not in _FLOOR_NOUNS:
+        return sentence
+    verb = texts[k + 2]
+    if verb in _IS:
+        end = len(texts) - 1 if k == 0 and texts[-1] in _ON else len(texts)
+        if k == 0 and end == len(texts):
+            return sentence  # "which floor is carpeted": the floor itself
+    elif verb in ("has", "have") and k == 0:
+        end = len(texts)
+    else:
+        return sentence
+    thing = sentence[k + 3 : end]
+    if not any(w.pos in ("NOUN", "PROPN") for w in thing) or _MOST & {w.text for w in thing[:2]}:
+        return sentence  # "which floor has the most bedrooms"
+    return thing

@@ -40,16 +40,22 @@ def route_goal(sentences: list[list[Word]]) -> list[list[Word]]:
     flat = [w for sentence in sentences for w in sentence]
     found = _goal_start(flat)
     if found is None:
-        return sentences
-    stop, start = found
-    goal = list(flat[start:])
+        there = _stop_there(flat)
+        if there is None:
+            return sentences
+        stop, goal = there
+    else:
+        stop, start = found
+        goal = list(flat[start:])
     while goal and goal[-1].text in (".", "!", "?"):
         goal.pop()
     if not goal or not any(w.pos in ("NOUN", "PROPN") for w in goal):
         return sentences
     goal = _past_room(_past_position(goal))
-    if not goal or _opens_with_room(goal):
-        return sentences  # "wait in the break room": a room, not a thing
+    if not goal:
+        return sentences
+    if _opens_with_room(goal):  # "wait in the break room": a room, not a thing
+        return [goal] if found is None else sentences
     if not _names_room(goal):
         room = _last_room_entered(flat[:stop])
         if room:
@@ -156,6 +162,45 @@ def _goal_start(words: list[Word]) -> tuple[int, int] | None:
             start -= 1  # keep the determiner: "the tub"
         return k, start
     return None
+
+
+_THERE = frozenset({"there", "here"})
+_PHRASE_TAGS = frozenset({"DET", "ADJ", "NOUN", "PROPN", "NUM"})
+
+
+def _stop_there(words: list[Word]) -> tuple[int, list[Word]] | None:
+    """Where a route ends with "stop there" ("walk to the big plant and stop there",
+    "you'll see a big couch, stop there") and the thing named last before it; None when
+    the route does not end so or names no thing before."""
+    ends = [k for k, w in enumerate(words) if w.text not in (".", "!", "?")]
+    if len(ends) < 2 or words[ends[-1]].text not in _THERE:
+        return None
+    k = ends[-2]
+    if words[k].lemma not in _STOPPING or words[k].pos not in ("VERB", "NOUN", "PROPN"):
+        return None
+    last = next((j for j in range(k - 1, -1, -1) if words[j].pos in ("NOUN", "PROPN")), None)
+    if last is None or any(w.pos == "VERB" for w in words[last + 1 : k]):
+        return None  # "put the box down and stop there"? a thing, then another act
+    first = _phrase_start(words, last)
+    if words[last].lemma == "one":
+        return None  # "not the left sink but the right one, stop there": read as a whole
+    # "the washing machine in the utility room": the thing, with where it is
+    while first > 1 and words[first - 1].text in _PLACING and words[first - 2].pos == "NOUN":
+        first = _phrase_start(words, first - 2)
+    return k, list(words[first : last + 1])
+
+
+# Prepositions that place a thing named before a stop ("the fridge in the garage").
+_PLACING = frozenset({"in", "inside", "on", "of", "by", "near", "beside"})
+
+
+def _phrase_start(words: list[Word], last: int) -> int:
+    """Where the noun phrase that ends at ``last`` starts (its article, adjectives and
+    compounds)."""
+    first = last
+    while first > 0 and words[first - 1].pos in _PHRASE_TAGS:
+        first -= 1
+    return first
 
 
 def _names_room(words: list[Word]) -> bool:

@@ -14,6 +14,7 @@ from __future__ import annotations
 from inherit_sg.retrieval.rules.rewording import (
     another_as_one_more,
     besides_as_beside,
+    floor_asked,
     non_words,
     only_thing,
     owner_side,
@@ -57,7 +58,7 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
-    sentences = [non_words(without_run_out(without_no_idea(s))) for s in sentences]
+    sentences = [non_words(without_run_out(without_no_idea(floor_asked(s)))) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [
