@@ -286,7 +286,7 @@ class LiveSession:
                 "segmenter needs: they add geometry but no objects (send instances + "
                 "instance_labels, or configure perception.segmenter = 'sam3' or 'classical')"
             )
-        unmasked = int(getattr(self.mapper.semantic.segmenter, "unmasked_frames", 0))
+        unmasked = self.mapper.semantic.unmasked_frames
         if unmasked:
             from inherit_sg.perception.auto_segmenter import UNNAMED_WARNING
 

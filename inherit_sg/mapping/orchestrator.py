@@ -284,11 +284,11 @@ class Mapper:
         t0 = time.perf_counter()
         frame, kf = item.frame, item.keyframe
         frame_at = self.session.started + frame.timestamp
-        observations, detections = self.semantic.observe_keyframe(frame)
-        for obs in observations:
+        seen = self.semantic.perceive(frame)
+        for obs in seen.observations:
             obs.timestamp, obs.keyframe_id = frame_at, kf.id
         with self._lock:
-            assigned, _ = self.semantic.integrate(frame, observations, detections, kf.floor_id)
+            assigned, _ = self.semantic.integrate(frame, seen, kf.floor_id)
             for node_id, det in assigned:
                 self._pending_seen.append(
                     Edge.make(

