@@ -374,14 +374,17 @@ _WH = frozenset({"where", "what", "which", "how", "when", "why", "if", "whether"
 
 
 def without_no_idea(sentence: list[Word]) -> list[Word]:
-    """ "no clue where the flashlight is …" as "where the flashlight is …"."""
+    """ "no clue where the flashlight is …", "not sure where the pizza cutter went" as
+    "where the flashlight is …"."""
     texts = [w.text for w in sentence]
-    i = 2 if texts[:2] in (["i", "have"], ["we", "have"]) else 0
-    if texts[i : i + 1] != ["no"] or texts[i + 1 : i + 2] not in (["idea"], ["clue"]):
-        return sentence
+    i = 2 if texts[:2] in (["i", "have"], ["we", "have"], ["i", "am"], ["i", "'m"]) else 0
+    if texts[i : i + 2] not in (["no", "idea"], ["no", "clue"], ["not", "sure"]):
+        return sentence  # "not sure where the pizza cutter went"
     rest = sentence[i + 2 :]
     if any(w.text in ("but", "so", "just", ",") for w in rest):
         return sentence  # "no idea which aisle but find the batteries": the request follows
+    if texts[i] == "not":  # "not sure which floor it's on, but …": only the place is unsure
+        return rest if rest and rest[0].text == "where" else sentence
     return rest if rest and rest[0].text in _WH else sentence
 
 
@@ -469,3 +472,41 @@ def floor_asked(sentence: list[Word]) -> list[Word]:
     if not any(w.pos in ("NOUN", "PROPN") for w in thing) or _MOST & {w.text for w in thing[:2]}:
         return sentence  # "which floor has the most bedrooms"
     return thing
+
+
+_CLAUSE_BREAKS = frozenset({",", ".", ";", "!", "?", "but", "so", "and"})
+_RELATIVES = frozenset({"that", "which", "who"})
+
+
+def without_no_longer(sentence: list[Word]) -> list[Word]:
+    """ "the tape dispenser isn't on my desk anymore", "the chair that is no longer in
+    the office": where a thing used to be tells of a change, not of which thing is
+    meant; the clause is dropped ("the tape dispenser")."""
+    texts = [w.text for w in sentence]
+    for k, text in enumerate(texts):
+        longer = texts[k : k + 2] == ["no", "longer"] and texts[k + 2 : k + 3] != ["than"]
+        if text not in ("not", "n't") and not longer:
+            continue
+        end = next((j for j in range(k + 1, len(texts)) if texts[j] in _CLAUSE_BREAKS), len(texts))
+        if longer:
+            stop = end
+        else:
+            hit = next((j for j in range(k + 1, end) if _any_more(texts, j)), None)
+            if hit is None:
+                continue
+            stop = hit + 1 if texts[hit] == "anymore" else hit + 2
+        start = k
+        while start > 0 and sentence[start - 1].pos == "AUX":
+            start -= 1  # "is", "does"
+        if start > 0 and texts[start - 1] in _RELATIVES:
+            start -= 1
+        if start == 0 or sentence[start - 1].pos not in ("NOUN", "PROPN", "PRON"):
+            return sentence  # "I don't use it anymore": no thing's place
+        return [*sentence[:start], *sentence[stop:]]
+    return sentence
+
+
+def _any_more(texts: list[str], j: int) -> bool:
+    return texts[j] == "anymore" or (
+        texts[j] == "any" and texts[j + 1 : j + 2] in (["more"], ["longer"])
+    )

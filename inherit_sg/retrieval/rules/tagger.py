@@ -508,6 +508,18 @@ def _verb_of_subject(words: list[Word], i: int) -> bool:
     return words[i].dep == "conj" and bool(subjects) and subjects[-1].pos in ("NOUN", "PROPN")
 
 
+_PERSONS = frozenset({"i", "you", "we", "they", "he", "she"})
+
+
+def _verb_of_person(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` is, by spaCy, the verb of a person just before it ("you saw a
+    drill", "did you notice a bag", "we iron on Sundays"), though the vocabulary knows
+    it as a thing."""
+    if i == 0 or words[i].pos != "VERB" or words[i].tag not in ("VB", "VBD", "VBP"):
+        return False
+    return words[i - 1].text in _PERSONS and words[i - 1].dep == "nsubj"
+
+
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -578,6 +590,10 @@ def tag(words: list[Word]) -> list[Tok]:
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
                     tok.pos, tok.tag = "VERB", words[i].tag
+                if _verb_of_person(words, i) and tok.has("noun"):
+                    for key in ("noun", "unk", "attr"):  # "you saw a drill", "did you notice"
+                        tok.tags.pop(key, None)
+                    tok.tags.setdefault("overb", words[i].lemma)
                 if first and (_verb_with_particle(words, i) or _verb_for_me(words, i)):
                     # "Switch on the lamp", "throw me the ball": a command, not a noun
                     for key in ("noun", "unk", "attr"):
