@@ -327,6 +327,10 @@ class Grammar(Cursor):
         np.plural = np.plural or last.plural
         if len(run) == 1 and last.has("generic"):
             np.kind = GENERIC
+        elif len(run) > 1 and _room_mark(last) and run[-2].has("room"):
+            # "conference room B", "bedroom 2": a room with its letter or number
+            np.kind, np.room_type = ROOM, run[-2].tags["room"]
+            np.labels = [run[-2].tags["room"]]
         elif last.has("room_word"):
             np.kind = ROOM
             np.labels = [np.noun] if len(run) > 1 else []
@@ -1444,3 +1448,9 @@ def _open_label(run: list[Tok]) -> str:
     phrase = " ".join([*(t.text for t in run[:-1]), head])
     known = object_vocab.labels_for(phrase)
     return known[0] if len(known) == 1 else phrase
+
+
+def _room_mark(tok: Tok) -> bool:
+    """Whether ``tok`` is the letter or number that names one room of a kind ("B" of
+    "conference room B", "2" of "bedroom 2")."""
+    return (len(tok.text) == 1 and tok.text.isalpha()) or tok.text.isdigit()

@@ -26,7 +26,7 @@ from inherit_sg.retrieval.rules.functions import (
     match_function,
     open_function,
 )
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ROOM
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, GENERIC, NP, OBJECT, ROOM
 from inherit_sg.retrieval.rules.sentences import FETCH_VERBS, PARTICULAR
 from inherit_sg.retrieval.rules.tagger import Tok
 from inherit_sg.vocab.lexicon import lexicon
@@ -175,7 +175,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         obj.excluded = True
         g.notes.append(f"'not {tok.text} {obj.noun}': ruled out")
         return [], obj
-    if named and _past(g, start):
+    if _past(g, start) and (named or _somewhere(obj)):
         # "where did I put my glasses", "I left my keys on …": the thing put is sought
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
@@ -418,6 +418,12 @@ def _imperative(g: Grammar, start: int) -> bool:
         return False
     prev = g.toks[start - 1] if start > 0 else None
     return prev is None or (prev.has("comma", "and", "filler") and not prev.has("to", "seeker"))
+
+
+def _somewhere(obj: NP | None) -> bool:
+    """Whether ``obj`` is a thing said to be somewhere ("I dropped my keys somewhere"):
+    a vague place that carries the thing's kind."""
+    return obj is not None and obj.kind == GENERIC and bool(obj.labels)
 
 
 def _past(g: Grammar, start: int) -> bool:
