@@ -25,8 +25,15 @@ from inherit_sg.perception.base import (
     Segmenter,
     VisualEncoder,
 )
+from inherit_sg.perception.colour_names import colour_name_in_frame
 from inherit_sg.perception.describer import UNNAMED, is_round_footprint
-from inherit_sg.perception.material import TextureStats, classify, fuse_votes
+from inherit_sg.perception.material import (
+    TextureStats,
+    classify,
+    frame_noise,
+    fuse_votes,
+    texture_stats,
+)
 
 log = logging.getLogger(__name__)
 
@@ -102,9 +109,6 @@ class KeyframePerceiver:
 
     def __call__(self, frame: Frame) -> Perceived:
         """What ``frame`` shows (see :class:`Perceived`)."""
-        from inherit_sg.perception.colour_names import colour_name_in_frame
-        from inherit_sg.perception.material import frame_noise, texture_stats
-
         kept: list[Detection] = []
         observations: list[Observation] = []
         for det in self.segmenter.segment(frame):

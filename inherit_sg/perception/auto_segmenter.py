@@ -4,9 +4,9 @@ classical class-agnostic segmenter.
 Generated walks and some datasets come with instance masks (the ``dataset`` segmenter
 reads them); real recordings (Replica, ScanNet, TUM, a robot's camera) usually do not, and
 with the ``dataset`` segmenter alone they would map to nothing. The semantic stream
-warns once at the first frame without masks (:data:`UNNAMED_WARNING`): its objects are found by depth and colour and stay unnamed
-("object") until a model is configured (``perception.segmenter = "sam3"`` with
-``perception.model_dir``).
+warns once at the first frame without masks (:data:`UNNAMED_WARNING`): its objects are
+found by depth and colour and stay unnamed ("object") until a model is configured
+(``perception.segmenter = "sam3"`` with ``perception.model_dir``).
 """
 
 from __future__ import annotations
@@ -36,11 +36,9 @@ class AutoSegmenter:
     def __init__(self, with_masks: Segmenter, without_masks: Segmenter) -> None:
         self.with_masks = with_masks
         self.without_masks = without_masks
-        self.unmasked_frames = 0
 
     def segment(self, frame: Frame, prompts: Sequence[str] | None = None) -> list[Detection]:
         """Detections of ``frame`` by whichever segmenter can look at it."""
         if frame.instances is not None:
             return self.with_masks.segment(frame, prompts)
-        self.unmasked_frames += 1
         return self.without_masks.segment(frame, prompts)

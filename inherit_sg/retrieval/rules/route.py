@@ -172,18 +172,17 @@ def _stop_there(words: list[Word]) -> tuple[int, list[Word]] | None:
     """Where a route ends with "stop there" ("walk to the big plant and stop there",
     "you'll see a big couch, stop there") and the thing named last before it; None when
     the route does not end so or names no thing before."""
-    ends = [k for k, w in enumerate(words) if w.text not in (".", "!", "?")]
-    if len(ends) < 2 or words[ends[-1]].text not in _THERE:
+    if len(words) < 2 or words[-1].text not in _THERE:
         return None
-    k = ends[-2]
+    k = len(words) - 2
     if words[k].lemma not in _STOPPING or words[k].pos not in ("VERB", "NOUN", "PROPN"):
         return None
     last = next((j for j in range(k - 1, -1, -1) if words[j].pos in ("NOUN", "PROPN")), None)
     if last is None or any(w.pos == "VERB" for w in words[last + 1 : k]):
         return None  # "put the box down and stop there"? a thing, then another act
-    first = _phrase_start(words, last)
     if words[last].lemma == "one":
         return None  # "not the left sink but the right one, stop there": read as a whole
+    first = _phrase_start(words, last)
     # "the washing machine in the utility room": the thing, with where it is
     while first > 1 and words[first - 1].text in _PLACING and words[first - 2].pos == "NOUN":
         first = _phrase_start(words, first - 2)

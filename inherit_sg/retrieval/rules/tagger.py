@@ -428,16 +428,11 @@ def _inside_compound(words: list[Word], i: int) -> bool:
     return before.pos == "NOUN" and before.dep == "compound"
 
 
-def _past_verb_of_person(words: list[Word], i: int) -> bool:
-    """Whether word ``i`` is, by spaCy, a past verb right after a personal pronoun ("I
-    left my badge", "you left it on the table"), though the vocabulary knows it as a
-    side."""
-    return (
-        i > 0
-        and words[i].pos == "VERB"
-        and words[i].tag in ("VBD", "VBN")
-        and words[i - 1].tag == "PRP"
-    )
+def _verb_of_person(words: list[Word], i: int, tenses: tuple[str, ...]) -> bool:
+    """Whether word ``i`` is, by spaCy, a verb in one of ``tenses`` right after a
+    personal pronoun ("I left my badge", "you saw a drill", "did you notice a bag"),
+    though the vocabulary knows it as a side or a thing."""
+    return i > 0 and words[i].pos == "VERB" and words[i].tag in tenses and words[i - 1].tag == "PRP"
 
 
 # Words that may follow "first" when it orders the steps of a request ("go to the kitchen
@@ -508,18 +503,6 @@ def _verb_of_subject(words: list[Word], i: int) -> bool:
     return words[i].dep == "conj" and bool(subjects) and subjects[-1].pos in ("NOUN", "PROPN")
 
 
-_PERSONS = frozenset({"i", "you", "we", "they", "he", "she"})
-
-
-def _verb_of_person(words: list[Word], i: int) -> bool:
-    """Whether word ``i`` is, by spaCy, the verb of a person just before it ("you saw a
-    drill", "did you notice a bag", "we iron on Sundays"), though the vocabulary knows
-    it as a thing."""
-    if i == 0 or words[i].pos != "VERB" or words[i].tag not in ("VB", "VBD", "VBP"):
-        return False
-    return words[i - 1].text in _PERSONS and words[i - 1].dep == "nsubj"
-
-
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -558,7 +541,7 @@ def tag(words: list[Word]) -> list[Tok]:
                     tok.plural = _ONE_WORDS[words[i].text]
                 if tok.has("colour") and _inside_compound(words, i):
                     tok.tags = {"unk": words[i].text}  # "ice cream scoop", not a cream one
-                if tok.has("dir") and _past_verb_of_person(words, i):
+                if tok.has("dir") and _verb_of_person(words, i, ("VBD", "VBN")):
                     del tok.tags["dir"]  # "I left my badge on my desk": a verb, no side
                 if tok.has("ord") and _first_in_time(words, i):
                     tok.tags = {"adv": words[i].text}  # "find the copier first": a step
@@ -590,7 +573,8 @@ def tag(words: list[Word]) -> list[Tok]:
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
                     tok.pos, tok.tag = "VERB", words[i].tag
-                if _verb_of_person(words, i) and tok.has("noun"):
+                subject = i > 0 and words[i - 1].dep == "nsubj"
+                if subject and tok.has("noun") and _verb_of_person(words, i, ("VB", "VBD", "VBP")):
                     for key in ("noun", "unk", "attr"):  # "you saw a drill", "did you notice"
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
