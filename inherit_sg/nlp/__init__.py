@@ -130,16 +130,22 @@ def lemma_phrase(text: str) -> str:
 def singular_read_as_plural(word: str, lemma: str) -> bool:
     """Whether spaCy read a singular noun that ends in "s" as a plural ("atlas" →
     "atla"): the word is a noun lemma of its own and the lemma given is none."""
-    nouns = _known_nouns()
+    nouns = _lemma_index("noun")
     return word != lemma and word in nouns and lemma not in nouns
 
 
-@lru_cache(maxsize=1)
-def _known_nouns() -> frozenset[str]:
-    """The nouns spaCy's English lemmatiser lists as lemmas (its ``lemma_index``)."""
+def known_lemma(word: str, pos: str) -> bool:
+    """Whether spaCy's English lemmatiser lists ``word`` as a lemma of the part of speech
+    ``pos`` ("noun", "verb", "adj" or "adv"): "cartridge" is a noun and no verb."""
+    return word in _lemma_index(pos)
+
+
+@lru_cache(maxsize=4)
+def _lemma_index(pos: str) -> frozenset[str]:
+    """The lemmas of ``pos`` that spaCy's English lemmatiser lists (its ``lemma_index``)."""
     lemmatizer = english().get_pipe("lemmatizer")
     table = lemmatizer.lookups.get_table("lemma_index")  # type: ignore[attr-defined]
-    return frozenset(table["noun"])
+    return frozenset(table[pos])
 
 
 @lru_cache(maxsize=8192)
@@ -149,4 +155,11 @@ def _noun_lemma(word: str) -> str:
     doc = nlp.make_doc(word)
     doc[0].tag_ = "NNS"
     doc[0].pos_ = "NOUN"
-    return str(nlp.get_pipe("lemmatizer")(doc)[0].lemma_).lower()
+    lemma = str(nlp.get_pipe("lemmatizer")(doc)[0].lemma_).lower()
+    if lemma not in _lemma_index("noun") and word.endswith(_SIBILANT_PLURALS):
+        return word[:-2]  # a noun the word lists lack: "lunchboxes" → "lunchbox"
+    return lemma
+
+
+# Plural endings after a sibilant, where English adds "es": "boxes", "benches".
+_SIBILANT_PLURALS = ("xes", "ches", "shes", "sses", "zzes")

@@ -155,8 +155,24 @@ def _same_kind(out: Clause, np: NP) -> bool:
     """Whether a contrasting phrase names the kind of the negated head again ("not the
     toilet in the WC, the other toilet"), the head having details to negate."""
     head = out.head
-    if head is None or not _names_kind_of(np, head):
-        return False
+    return head is not None and _names_kind_of(np, head) and _has_details(out)
+
+
+def _described_anew(out: Clause, np: NP) -> bool:
+    """Whether a "one" after a negated head only describes ("the winter one", "the big
+    over-ear ones"): no place, no "other", and a head that was not pointed at."""
+    return (
+        bool(np.constraints)
+        and all(isinstance(c, AttributeConstraint) for c in np.constraints)
+        and not (np.places or np.other or out.head_pointed)
+    )
+
+
+def _has_details(out: Clause) -> bool:
+    """Whether the clause's head says more than its kind (details, places), or was
+    given places while negated."""
+    head = out.head
+    assert head is not None
     details = [c for c in head.constraints if c.kind != "label"]
     return bool(details or head.places or out.negated_head_places)
 
@@ -798,8 +814,12 @@ class ClauseParser(Grammar):
             return
         flip = neg and np.kind == ONE  # "except the ones in the bedroom"
         if out.head_negated and not neg and out.head is not None and _contrast(prev):
-            if np.kind == OBJECT and np.labels and not _same_kind(out, np):
-                self._exclude(out, out.head)  # "not the sofa but the armchair"
+            if (np.kind == OBJECT and np.labels and not _same_kind(out, np)) or (
+                np.kind == ONE and _described_anew(out, np) and not _has_details(out)
+            ):
+                # "not the sofa but the armchair"; "not the raincoat, the winter one" (a
+                # one of the kind spoken of before, described anew)
+                self._exclude(out, out.head)
                 out.head, out.head_negated = None, False
             elif np.kind == ONE or _same_kind(out, np) or _pointed_again(out, np):
                 self._contrast_one(out, np)
@@ -842,7 +862,43 @@ class ClauseParser(Grammar):
             return  # "where did the kids put the football"
         definite = self.toks[start].text in ("the", "that", "this")
         coordinated = prev is not None and prev.has("and", "or")
+        if not neg and prev is not None and prev.has("comma") and self._narrows_to(out, np, start):
+            return
         self._second_phrase(out, np, neg, coordinated, definite=definite)
+
+    def _narrows_to(self, out: Clause, np: NP, start: int) -> bool:
+        """A place named first, then the thing in it after a comma ("the wine rack in the
+        basement, bottom row, the third bottle from the right", "the shelving unit on
+        your right, second shelf, the box labeled halloween"): the last thing named is
+        the target, on or in the holder named first. Not a list ("the table, the chairs
+        and the bench"), nor a thing said of the head ("…, the lamp is on")."""
+        head = out.head
+        assert head is not None
+        if head.kind != OBJECT or not head.labels or out.head_negated:
+            return False
+        if np.kind != OBJECT or not np.labels or _names_kind_of(np, head) or _related(head, np):
+            return False
+        if self.toks[start].text not in ("the", "that", "this"):
+            return False  # "my purse, leather, …": a bare word describes the head
+        if np.words[-1] in lexicon().quantity_nouns or _level_of(np, head):
+            return False  # a row or a shelf of the holder: "bottom row", "top shelf"
+        predicate = _holder_predicate(head.labels)
+        if predicate is None:
+            return False
+        nxt = self.peek()
+        if nxt is not None and (nxt.has("be", "modal") or nxt.tag in ("VBZ", "VBP", "MD")):
+            return False  # a thing said of: "…, the lamp is on"
+        if any(t.has("and", "or") for t in self.toks[self.i :]):
+            return False
+        np.constraints.append(
+            RelationConstraint(
+                predicate=predicate, landmark=head.landmark(), weight=self.weight("relation"),
+                text=f"{predicate} {head.noun}",
+            )
+        )  # fmt: skip
+        self.notes.append(f"{np.noun!r} is the target, {predicate} the {head.noun!r} named first")
+        out.head = np
+        return True
 
     def _acted_on(self, out: Clause, thing: NP) -> bool:
         """A person as the head and a thing a verb acts on ("the kids can't reach the
@@ -1007,6 +1063,9 @@ class ClauseParser(Grammar):
         after_verb = prev.has("overb", "fverb", "have") and not prev.has("be", "det", "seek")
         if after_verb and prev.lemma in _FETCH_VERBS and self._asked_before(start - 1):
             after_verb = False  # "can you get the salt": what is fetched is sought
+        if after_verb and prev.tag in ("VBD", "VBN") and prev.lemma in _LEAVING and start >= 2:
+            # "check if I left the iron on": the thing someone left or put is sought
+            after_verb = self.toks[start - 2].text not in ("i", "we", "you")
         # "i don't know the name, the thing above the tv": the object of a verb of
         # knowing or saying in a filler phrase (not of "where can i find")
         mental = prev.has("filler") and prev.text.split()[-1] in lexicon().mental_verbs
@@ -1175,6 +1234,34 @@ class ClauseParser(Grammar):
                 text=np.noun, beside=np.beside,
             )  # fmt: skip
         return AreaConstraint(label=np.noun, negated=neg, weight=self.weight("area"), text=np.noun)
+
+
+def _level_of(np: NP, head: NP) -> bool:
+    """Whether ``np`` names a part of ``head`` that holds things in turn, or one the
+    object vocabulary does not know as a kind: a shelf or a compartment of a cabinet."""
+    part = any(object_vocab.is_part(word, label) for word in np.words for label in head.labels)
+    return part and (
+        not np.known
+        or _holder_predicate(np.labels) == "on"
+        or any("storage" in object_vocab.is_a(label) for label in np.labels)
+    )
+
+
+# Verbs that leave a thing somewhere: what "I left" or "we put" is the thing sought.
+_LEAVING = frozenset({"leave", "put", "place", "set", "drop", "move", "hide", "store", "keep",
+                      "lose", "forget", "stash", "stick"})  # fmt: skip
+
+
+def _holder_predicate(labels: list[str]) -> str | None:
+    """How a thing of one of ``labels`` holds another: "on" a shelf or a surface,
+    "inside" a cabinet, box or bin; None for a thing that holds nothing."""
+    for label in labels:
+        kinds = {label, *object_vocab.is_a(label)}
+        if kinds & {"shelf", "surface"}:
+            return "on"
+        if kinds & {"storage", "container", "bin"}:
+            return "inside"
+    return None
 
 
 def _only_a_look(np: NP) -> bool:

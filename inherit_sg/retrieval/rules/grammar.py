@@ -148,9 +148,35 @@ class Grammar(Cursor):
             np.places.append(self._room(np, False, np.noun, None))
             np.kind, np.labels, np.words, np.room_type = ONE, [], [], None
             np.plural = tok.text == "ones"
+        elif np.kind == OBJECT and self._modifies_one():
+            self._open_words_describe_one(np)  # "not the big heavy-duty one"
         self._postmodifiers(np, landmark)
         self._finish(np)
         return np
+
+    def _modifies_one(self) -> bool:
+        """ "one" / "ones" follows, and not as "one of" ("the box one of you left")."""
+        tok = self.peek()
+        return (
+            tok is not None
+            and tok.has("one")
+            and tok.text in ("one", "ones")
+            and self.text_at(1) != "of"
+        )
+
+    def _open_words_describe_one(self, np: NP) -> None:
+        """Nouns just before "one" ("the canvas one", "the heavy-duty one", written apart
+        as "heavy duty") describe the one meant; they name no kind."""
+        tok = self.advance()
+        for word in np.words:
+            np.constraints.append(
+                AttributeConstraint(
+                    key="other", value=word, negated=False,
+                    weight=self.weight("attribute"), text=word,
+                )
+            )  # fmt: skip
+        np.kind, np.labels, np.words = ONE, [], []
+        np.plural = tok.text == "ones"
 
     def _premodifiers(self, np: NP) -> int:
         count = 0
@@ -294,6 +320,9 @@ class Grammar(Cursor):
                 self.advance()
                 np.kind, np.floor = FLOOR, max(0, self.advance().tags["num"] - 1)
                 break
+            if not run and self._owner_before_thing(tok):
+                self.advance()  # "the kids lunchboxes", "dads coat": whose, not what
+                continue
             if tok.has("seeker", "abstract") and not tok.has("noun"):
                 if self.nounish(1) and not self.at("one", k=1) and not tok.has("abstract"):
                     run.append(self.advance())  # "a group discussion"
@@ -321,7 +350,20 @@ class Grammar(Cursor):
             break
         return run
 
+    def _owner_before_thing(self, tok: Tok) -> bool:
+        """A person word written as an owner without its apostrophe ("the kids
+        lunchboxes", "dads coat") before a thing that is not a room."""
+        return (
+            tok.has("seeker")
+            and tok.text.endswith("s")
+            and not tok.text.endswith("ss")
+            and self.nounish(1)
+            and not self.at("room", "room_word", "one", k=1)
+        )
+
     def _head(self, np: NP, run: list[Tok]) -> None:
+        if len(run) > 1 and run[-1].has("generic") and run[-1].pos == "ADV":
+            run = run[:-1]  # "my hearing aid case somewhere": the thing, said to be somewhere
         last = run[-1]
         np.words = [t.text for t in run]
         np.plural = np.plural or last.plural
@@ -510,6 +552,9 @@ class Grammar(Cursor):
                 and (self.np_start(2) or self.at("placement", k=1))
             ):
                 after_be = True  # "the boxes stacked by the door", "a lamp standing by"
+            elif np.kind == ONE and self._state_of_one(np, tok):
+                after_be = True  # "except the one plugged in by my bed": how it stands
+                continue
             elif tok.has("seeker", "modal") and not self.np_start():
                 pass
             elif tok.has("neg"):
@@ -529,6 +574,30 @@ class Grammar(Cursor):
             else:
                 continue
             self.advance()
+
+    def _state_of_one(self, np: NP, tok: Tok) -> bool:
+        """A participle after "one" and before a place ("the one plugged in by my bed",
+        "the one running to the freezer") says how that one stands, not what it is for:
+        its particle is passed over with it."""
+        phrasal = tok.tag == "RP" and " " in tok.text  # "plugged in", one token
+        if not (tok.tag in ("VBN", "VBG") or phrasal) or tok.has("prep", "noun", "unk"):
+            return False
+        k = 2 if self.text_at(1) in ("in", "up", "out", "off") and self.at("prep", k=2) else 1
+        if not (self.at("prep", "to", k=k) and self.np_start(k + 1)):
+            return False
+        for _ in range(k):
+            self.advance()
+        if self.at("to") and not self.at("prep"):
+            self.advance()  # "the one running to the freezer": near where it leads
+            lm = self.parse_np(landmark=True)
+            if lm is not None and lm.kind == OBJECT and lm.labels:
+                np.constraints.append(
+                    RelationConstraint(
+                        predicate="near", landmark=lm.landmark(), negated=self.take_neg(),
+                        weight=self.weight("relation"), text=f"{tok.text} to {lm.noun}",
+                    )
+                )  # fmt: skip
+        return True
 
     def _material_phrase(self, np: NP) -> bool:
         """ "covered in grey fabric", "a sofa in black leather", "upholstered with velvet":

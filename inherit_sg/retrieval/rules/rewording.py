@@ -32,10 +32,11 @@
 
 from __future__ import annotations
 
-from inherit_sg.retrieval.rules.tokens import COMMA, THE, A, Word
+from inherit_sg.retrieval.rules.tokens import COMMA, IN, THE, A, Word
 from inherit_sg.vocab.colours import colour_words
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label
+from inherit_sg.vocab.rooms import room_type
 
 _SIDE_PREPOSITIONS = frozenset({"to", "on", "at", "by"})
 _SIDES = frozenset({"left", "right"})
@@ -381,11 +382,41 @@ def without_no_idea(sentence: list[Word]) -> list[Word]:
     if texts[i : i + 2] not in (["no", "idea"], ["no", "clue"], ["not", "sure"]):
         return sentence  # "not sure where the pizza cutter went"
     rest = sentence[i + 2 :]
+    if rest and rest[0].text == "where" and (hinted := _place_hinted(rest)) is not None:
+        return hinted  # "not sure where the stapler went, maybe the box room?"
     if any(w.text in ("but", "so", "just", ",") for w in rest):
         return sentence  # "no idea which aisle but find the batteries": the request follows
     if texts[i] == "not":  # "not sure which floor it's on, but …": only the place is unsure
         return rest if rest and rest[0].text == "where" else sentence
     return rest if rest and rest[0].text in _WH else sentence
+
+
+# Words before a guessed place after "not sure where X is,": "maybe", "can you look".
+_GUESS_OPENERS = frozenset({"maybe", "probably", "perhaps", "possibly", "try", "can", "could",
+                            "you", "u", "please", "pls", "look", "check", "i", "think", "it",
+                            "is", "might", "be"})  # fmt: skip
+
+
+def _place_hinted(rest: list[Word]) -> list[Word] | None:
+    """ "where the remote is, can you look in the den", "where the stapler went, maybe
+    the box room": the thing's clause with the place guessed after the comma ("where the
+    remote is in the den"); None when something else follows the comma."""
+    k = next((j for j, w in enumerate(rest) if w.text == ","), None)
+    if k is None or k < 3:
+        return None
+    after = rest[k + 1 :]
+    while after and after[0].text in _GUESS_OPENERS:
+        after = after[1:]
+    if not after or any(w.pos == "VERB" or w.text == "," for w in after):
+        return None
+    nouns = [w.text for w in after if w.pos in ("NOUN", "PROPN")]
+    if not nouns:
+        return None
+    if after[0].pos == "ADP":
+        return [*rest[:k], *after]
+    if after[0].pos == "DET" and room_type(" ".join(nouns)) is not None:
+        return [*rest[:k], IN, *after]
+    return None
 
 
 _RUN_OUT_OPENINGS = (("there", "is", "no"), ("there", "are", "no"), ("there", "is", "nothing"),

@@ -27,6 +27,7 @@ from inherit_sg.retrieval.rules.rewording import (
     without_sign_negation,
 )
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label
 from inherit_sg.vocab.rooms import room_type
 
@@ -169,8 +170,52 @@ def _without_cautions(sentences: list[list[Word]]) -> list[list[Word]]:
         nxt = sentences[n + 1] if n + 1 < len(sentences) else []
         if verb is not None and nxt and _errand_of_another(nxt, sentence[verb + 1 :]):
             continue
-        out.append(sentence)
+        if verb is not None and (errand := _errand_run_on(sentence, verb)) is not None:
+            out.append(errand)  # "dont worry about the dishes just find the cat food"
+            continue
+        out.append(_without_trailing_caution(sentence))
     return out
+
+
+def _errand_run_on(sentence: list[Word], verb: int) -> list[Word] | None:
+    """The errand a caution runs on into ("don't worry about the dishes just find the
+    cat food" → "find the cat food"), or None. Not after a verb of going ("don't go into
+    the garage, get …" keeps out of the garage), nor when the errand takes "one" or the
+    cautioned thing again ("don't touch the blue mug, take the red one")."""
+    if sentence[verb].lemma in lexicon().viewpoint_verbs:
+        return None
+    for j in range(verb + 2, len(sentence) - 1):
+        if sentence[j].text not in _ERRAND_LINKS and sentence[j] is not COMMA:
+            continue
+        k = j + 1
+        while k < len(sentence) and sentence[k].text in _ERRAND_LINKS:
+            k += 1
+        if k >= len(sentence) - 1 or sentence[k].lemma not in _SEEKING:
+            continue
+        errand = sentence[k:]
+        if sentence[k].tag not in ("VB", "VBP") or any(w.text in ("one", "ones") for w in errand):
+            return None
+        thing = _first_head(errand[1:])
+        cautioned = _first_head(sentence[verb + 1 : j])
+        return errand if thing is not None and thing != cautioned else None
+    return None
+
+
+def _without_trailing_caution(sentence: list[Word]) -> list[Word]:
+    """A thing named, then a caution after a comma ("chainsaw on the top shelf of the
+    shed, dont touch the chain", "the snow shovel is by the side door, dont trip over
+    it"): the caution rules nothing out and is left out, up to the next comma. Kept when
+    it says "one" ("…, don't touch the red one")."""
+    for k, word in enumerate(sentence):
+        if word is not COMMA or not any(w.pos == "NOUN" for w in sentence[:k]):
+            continue
+        rest = sentence[k + 1 :]
+        verb = _caution_verb(rest)
+        if verb is None or any(w.text in ("one", "ones") for w in rest):
+            continue
+        end = next((j for j in range(verb, len(rest)) if rest[j] is COMMA), len(rest))
+        return sentence[:k] + rest[end:]
+    return sentence
 
 
 def _errand_of_another(errand: list[Word], cautioned: list[Word]) -> bool:
@@ -352,6 +397,8 @@ def without_repeating(sentence: list[Word]) -> list[Word]:
 
 # Verbs whose object is a thing to carry to the speaker ("bring the juice").
 FETCH_VERBS = frozenset({"bring", "get", "grab", "fetch", "pass", "hand", "take"})
+# Verbs of an errand that may follow a caution in the same sentence.
+_SEEKING = FETCH_VERBS | {"find", "locate", "check"}
 # Words before a noun that make it one particular thing ("the juice", "my tea").
 PARTICULAR = frozenset({"the", "my", "your", "our", "his", "her", "their", "this", "that"})
 
@@ -603,6 +650,32 @@ _SIGN_OFFS = frozenset(
 )
 
 
+def _introduction_end(sentence: list[Word]) -> int | None:
+    """Where a speaker's opening self-introduction ends (the comma after it): "sam here,
+    …", "mum here, …", "hi robot its maria the cleaner, …", "hey, this is dan, …";
+    None when the sentence opens otherwise or nothing follows the comma."""
+    texts = [w.text for w in sentence]
+    cut = next((j for j, t in enumerate(texts[:9]) if t == ","), None)
+    if cut is None or cut + 1 >= len(sentence):
+        return None
+    head = texts[:cut]
+    if 1 <= len(head) <= 2 and head[-1] == "here" and sentence[0].pos in ("PROPN", "NOUN"):
+        return cut  # "sam here,"
+    i = next((j for j, t in enumerate(head) if t not in _GREETINGS and t != "robot"), len(head))
+    opening = 1 if head[i : i + 1] == ["its"] else 2
+    if i and (opening == 1 or head[i : i + 2] in (["it", "is"], ["this", "is"], ["i", "am"])):
+        named = sentence[i + opening : cut]
+        if named and (_a_name(named[0]) or named[0].text in lexicon().seekers):
+            return cut  # "hi robot its maria the cleaner,"
+    return None
+
+
+def _a_name(word: Word) -> bool:
+    """Whether ``word`` reads as a person's name: a proper noun, or a noun that names no
+    kind of thing ("maria" lower case)."""
+    return word.pos == "PROPN" or (word.pos == "NOUN" and canonical_label(word.text) is None)
+
+
 def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
     """The request without the greeting and sign-off of a message ("Hi Sam, can you grab
     the laptop from my desk? Cheers, Mark"): a greeting and up to three words before a
@@ -610,7 +683,9 @@ def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
     if not sentences:
         return sentences
     first = sentences[0]
-    if first and first[0].text in _GREETINGS:
+    if (cut := _introduction_end(first)) is not None:
+        sentences = [first[cut + 1 :], *sentences[1:]]  # "sam here, …", "hi, it's maria, …"
+    elif first and first[0].text in _GREETINGS:
         cut = next((j for j, w in enumerate(first[:5]) if w is COMMA), None)
         if cut is not None and cut + 1 < len(first):
             sentences = [first[cut + 1 :], *sentences[1:]]

@@ -428,6 +428,16 @@ def _inside_compound(words: list[Word], i: int) -> bool:
     return before.pos == "NOUN" and before.dep == "compound"
 
 
+def _named_after_determiner(words: list[Word], i: int) -> bool:
+    """Whether ``words[i]`` right after a determiner is a noun, or a gerund before one
+    ("a hanging basket")."""
+    if not i or words[i - 1].pos != "DET":
+        return False
+    if words[i].pos == "NOUN":
+        return True
+    return words[i].tag == "VBG" and i + 1 < len(words) and words[i + 1].pos == "NOUN"
+
+
 def _verb_of_person(words: list[Word], i: int, tenses: tuple[str, ...]) -> bool:
     """Whether word ``i`` is, by spaCy, a verb in one of ``tenses`` right after a
     personal pronoun ("I left my badge", "you saw a drill", "did you notice a bag"),
@@ -555,8 +565,9 @@ def tag(words: list[Word]) -> list[Tok]:
                     # "clear plastic storage bin": a word of the thing's look or name, not
                     # the need "to clear" / "to lunch"
                     _as_description(tok, words[i])
-                if tok.has("be") and words[i].pos == "NOUN" and i and words[i - 1].pos == "DET":
-                    # "a set of two curtains": a noun after its determiner, not "set" = placed
+                if tok.has("be") and _named_after_determiner(words, i):
+                    # "a set of two curtains", "in a hanging basket": a noun or a word of
+                    # its name after its determiner, not "set" = placed, "hanging" = is
                     for key in ("be", "fverb", "overb"):
                         tok.tags.pop(key, None)
                     tok.tags["unk"] = words[i].text

@@ -17,7 +17,7 @@ import unicodedata
 from dataclasses import dataclass
 
 from inherit_sg.errors import QueryTextError
-from inherit_sg.nlp import analyse, singular_read_as_plural
+from inherit_sg.nlp import analyse, known_lemma, lemma_phrase, singular_read_as_plural
 
 MAX_QUERY_CHARS = 5000
 
@@ -239,8 +239,35 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
         while words and words[-1] is COMMA:
             words.pop()
         if words:
-            out.append(_its_is(words))
+            out.append(_its_is(_nouns_read_as_verbs(words)))
     return out, fixes
+
+
+_NOT_NOUN = ("verb", "adj", "adv")
+
+
+def _nouns_read_as_verbs(words: list[Word]) -> list[Word]:
+    """Nouns of a compound that spaCy tagged as a verb or a comparative, read as nouns
+    again: a present-tense verb after a noun or a determiner whose lemma is no English
+    verb ("the printer cartridges", "the kids lunchboxes"), and a comparative after a noun
+    that comes from no adjective ("the bird feeder"). The lemmatiser's word lists decide,
+    so a word that is a verb ("the kids play") stays one."""
+    out = list(words)
+    for i in range(1, len(words)):
+        word, prev = words[i], words[i - 1]
+        if word.pos == "VERB" and word.tag in ("VBZ", "VBP", "VB"):
+            if prev.pos not in ("NOUN", "PROPN", "DET") or prev.tag == "WDT":
+                continue
+            if any(known_lemma(w, pos) for w in (word.lemma, word.text) for pos in _NOT_NOUN):
+                continue  # "the kids play", "my slippers dear"
+            plural = word.text.endswith("s") and not word.text.endswith("ss")
+            lemma = lemma_phrase(word.text) if plural else word.text
+            out[i] = Word(word.text, lemma, "NOUN", "NNS" if plural else "NN", word.dep)
+        elif word.tag == "JJR" and prev.pos == "NOUN" and known_lemma(word.text, "noun"):
+            if known_lemma(word.lemma, "adj") or known_lemma(word.text, "adj"):
+                continue
+            out[i] = Word(word.text, word.text, "NOUN", "NN", word.dep)
+    return out
 
 
 _IT = Word("it", "it", "PRON", "PRP", "nsubj")
