@@ -29,6 +29,7 @@ from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE, ROOM
 from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label, is_kind_of
 
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
@@ -335,6 +336,8 @@ def picks_out(sentence: list[Word]) -> bool:
     """Whether a sentence says that the thing it opens with is the one meant: "the
     recycling bin on its left side is the one", "the kitchen cabinet we want is …",
     "the lamp by the door is the one I mean" ("this is the one" names nothing new)."""
+    if _names_the_object(sentence):
+        return True  # a short closing "it is the floor lamp", "the object is the projector"
     if not sentence or sentence[0].text in _IDENTIFYING:
         return False
     if sentence[0].pos not in ("DET", "ADJ", "NOUN", "PROPN"):
@@ -342,7 +345,10 @@ def picks_out(sentence: list[Word]) -> bool:
     texts = [w.text for w in sentence]
     for j in range(1, len(sentence) - 2):
         if sentence[j].lemma == "be" and texts[j + 1 : j + 3] == ["the", "one"]:
-            return any(w.pos in ("NOUN", "PROPN") for w in sentence[:j])
+            # a thing named before "is the one"; a material is none ("…, black metal, and
+            # it is the one on the far right")
+            materials = lexicon().materials
+            return any(w.pos in ("NOUN", "PROPN") and w.text not in materials for w in sentence[:j])
     for i in range(1, len(sentence) - 1):  # "the cabinet (that) we want …"
         j = i + 1 if texts[i] in ("that", "which") else i
         if j + 1 >= len(sentence) or texts[j] not in _CHOOSERS:
@@ -351,6 +357,22 @@ def picks_out(sentence: list[Word]) -> bool:
         if sentence[k].lemma in _PICKING and ends_with_thing(sentence[:i]):
             return True
     return False
+
+
+# Openings of a short sentence that names the object meant: "it is the …", "the object
+# is the …".
+_NAMING_OPENINGS = (("it", "is", "the"), ("the", "object", "is", "the"))
+
+
+def _names_the_object(sentence: list[Word]) -> bool:
+    """Whether ``sentence`` is only "it is the X" / "the object is the X" (at most three
+    words after the opening, ending on a noun): it says which thing is meant."""
+    texts = tuple(w.text for w in sentence)
+    opening = next((o for o in _NAMING_OPENINGS if texts[: len(o)] == o), None)
+    if opening is None:
+        return False
+    rest = sentence[len(opening) :]
+    return 1 <= len(rest) <= 3 and rest[-1].pos in ("NOUN", "PROPN")
 
 
 def split_at_pick(sentence: list[Word]) -> list[list[Word]]:

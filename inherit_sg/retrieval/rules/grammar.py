@@ -126,6 +126,8 @@ class Grammar(Cursor):
     def parse_np(self, landmark: bool = False) -> NP | None:
         """Parse a noun phrase at the cursor; None when no head was found."""
         np = NP()
+        opening = self.peek()
+        picked_one = opening is not None and opening.text.startswith("one of ")
         mods = self._premodifiers(np)
         if np.kind == FLOOR:
             return np
@@ -140,6 +142,8 @@ class Grammar(Cursor):
             np.kind = ONE  # "the biggest", "the red"
         if run:
             self._head(np, run)
+        if picked_one:
+            np.plural, np.quantity = False, None  # "one of the two lamps": one lamp
         tok = self.peek()
         if np.kind == ROOM and tok is not None and tok.has("num") and tok.text.isdigit():
             np.words.append(self.advance().text)  # a numbered room: "bedroom 2"
@@ -892,8 +896,11 @@ class Grammar(Cursor):
         thing does or is doing ("that doesn't wobble", "isn't charging"), a state."""
         phrasal = self._neg and tok.has("fverb") and " " in tok.text  # "isn't plugged in"
         posture = (
-            self._neg and tok.has("be") and tok.tag == "VBG" and self.text_at(1) in _POSTURE_ENDS
-        )  # "that isn't standing up"
+            (self._neg or np.kind == ONE)
+            and tok.has("be")
+            and tok.tag == "VBG"
+            and self.text_at(1) in _POSTURE_ENDS
+        )  # "that isn't standing up", "not the ones standing up"
         if not phrasal and (tok.pos != "VERB" or tok.tag not in ("VB", "VBG", "VBZ", "VBP", "VBN")):
             return False
         if not posture and tok.has("prep", "noun", "be", "have", "placement", "view"):
@@ -905,7 +912,7 @@ class Grammar(Cursor):
             return False  # "something that could help": what it can do, no state
         # "that isn't plugged in", "not hanging up": the verb's particle belongs to it
         particle = self.peek(1)
-        k = 2 if self._neg and particle is not None and (particle.tag == "RP" or posture) else 1
+        k = 2 if particle is not None and (posture or (self._neg and particle.tag == "RP")) else 1
         if tok.tag == "VBN" and k == 1 and not phrasal and (not self._neg or tok.has("adj")):
             return False  # a participle alone is an adjective's business ("cracked")
         after = self.peek(k)

@@ -68,6 +68,7 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
         without_sign_negation(another_as_one_more(without_moved_away(s))) for s in sentences
     ]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
+    sentences = [_after_but_it_is(sentence) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
@@ -190,6 +191,8 @@ def _errand_run_on(sentence: list[Word], verb: int) -> list[Word] | None:
         k = j + 1
         while k < len(sentence) and sentence[k].text in _ERRAND_LINKS:
             k += 1
+        if _it_is_the(sentence, k):
+            return sentence[k:]  # "dont mind the mess, its the desk by the window"
         if k >= len(sentence) - 1 or sentence[k].lemma not in _SEEKING:
             continue
         errand = sentence[k:]
@@ -199,6 +202,33 @@ def _errand_run_on(sentence: list[Word], verb: int) -> list[Word] | None:
         cautioned = _first_head(sentence[verb + 1 : j])
         return errand if thing is not None and thing != cautioned else None
     return None
+
+
+def _it_is_the(sentence: list[Word], k: int) -> bool:
+    """Whether "it is the …" / "it is a …" starts at ``k``."""
+    texts = [w.text for w in sentence[k : k + 3]]
+    return texts[:2] == ["it", "is"] and len(texts) == 3 and texts[2] in ("the", "a", "an")
+
+
+def _negated_verb(sentence: list[Word], k: int) -> bool:
+    """Whether "not" at ``k`` negates a verb after an auxiliary ("can not see")."""
+    return (
+        sentence[k].text == "not"
+        and sentence[k - 1].pos == "AUX"
+        and sentence[k + 1].pos in ("VERB", "AUX")
+    )
+
+
+def _after_but_it_is(sentence: list[Word]) -> list[Word]:
+    """A remark of what cannot be seen or told, then "but it's the …" ("you cant see its
+    legs from here but its the table in the middle", "I cant tell what color it is but
+    its the pillow on the left"): the description after "but" alone."""
+    for j, word in enumerate(sentence):
+        if word.text == "but" and _it_is_the(sentence, j + 1):
+            if any(_negated_verb(sentence, k) for k in range(1, j - 1)):
+                return sentence[j + 1 :]
+            return sentence
+    return sentence
 
 
 def _without_trailing_caution(sentence: list[Word]) -> list[Word]:

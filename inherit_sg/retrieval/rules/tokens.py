@@ -181,9 +181,20 @@ _ABSENT_FROM = re.compile(
 )
 
 
+# "this is a nightstand. there is no lamp on it.": the thing described has none on it
+_NONE_ON_IT = re.compile(
+    r"\bthere (?:is|are) no ((?:\w+ ){0,3}?\w+) (on|in|inside|on top of) (it|them)\b",
+    re.IGNORECASE,
+)
+
+
 def absent_from(text: str) -> str:
     """ "there is no lamp on the desk" as "the lamp that is not on the desk" (also "no
-    monitors are on …", "the room has no … near …"); other text as is."""
+    monitors are on …", "the room has no … near …"), and "there is no lamp on it" as "it
+    has no lamp on it"; other text as is."""
+    text = _NONE_ON_IT.sub(
+        lambda m: f"{m.group(3)} has no {m.group(1)} {m.group(2)} {m.group(3)}", text
+    )
     return _ABSENT_FROM.sub(_thing_not_there, text)
 
 
