@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from inherit_sg.nlp import english
+from inherit_sg.nlp import english, known_lemma, lemma_phrase
 from inherit_sg.nlp.attribute_index import UnsupportedPattern, build_index, speed_up
 
 DEV = Path(__file__).resolve().parents[1] / "data" / "dev_requests"
@@ -73,3 +73,15 @@ def test_pattern_of_another_form_leaves_the_ruler_alone() -> None:
         build_index(ruler)  # type: ignore[arg-type]
     assert speed_up(ruler) is False  # type: ignore[arg-type]
     assert "match" not in vars(ruler)
+
+
+def test_lemma_lists_tell_nouns_from_verbs() -> None:
+    assert known_lemma("cartridge", "noun") and not known_lemma("cartridge", "verb")
+    assert known_lemma("play", "verb") and known_lemma("play", "noun")
+    assert not known_lemma("feeder", "adj")
+
+
+def test_unknown_plural_after_a_sibilant_loses_es() -> None:
+    assert lemma_phrase("kids lunchboxes") == "kids lunchbox"
+    assert lemma_phrase("benches") == "bench"
+    assert lemma_phrase("atlas") == "atlas"

@@ -257,6 +257,12 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
 _NOT_NOUN = ("verb", "adj", "adv")
 
 
+def _no_verb_after(words: list[Word], i: int) -> bool:
+    """Whether no verb follows ``words[i]`` (a modal needs one): the end, a preposition,
+    a conjunction or a clause break."""
+    return i + 1 == len(words) or words[i + 1].pos in ("ADP", "CCONJ", "PUNCT", "SCONJ")
+
+
 def _nouns_read_as_verbs(words: list[Word]) -> list[Word]:
     """Nouns of a compound that spaCy tagged as a verb or a comparative, read as nouns
     again: a present-tense verb after a noun or a determiner whose lemma is no English
@@ -274,6 +280,13 @@ def _nouns_read_as_verbs(words: list[Word]) -> list[Word]:
             plural = word.text.endswith("s") and not word.text.endswith("ss")
             lemma = lemma_phrase(word.text) if plural else word.text
             out[i] = Word(word.text, lemma, "NOUN", "NNS" if plural else "NN", word.dep)
+        elif (
+            word.text == "can"
+            and word.tag == "MD"
+            and prev.pos == "NOUN"
+            and _no_verb_after(words, i)
+        ):
+            out[i] = Word("can", "can", "NOUN", "NN", word.dep)  # "the gas can by the mower"
         elif word.tag == "JJR" and prev.pos == "NOUN" and known_lemma(word.text, "noun"):
             if known_lemma(word.lemma, "adj") or known_lemma(word.text, "adj"):
                 continue
