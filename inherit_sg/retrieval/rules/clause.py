@@ -838,6 +838,9 @@ class ClauseParser(Grammar):
         if np.kind == ANAPHOR and neg and (out.head is None or out.head.kind == ONE):
             out.exclude_previous = True  # "not that one", "the one on the left, not that one"
             return
+        if np.kind == ANAPHOR and neg and out.head is not None and self._pointed_one(start):
+            out.exclude_previous = True  # "this cup here, not that one"
+            return
         if out.head is None:
             if self._stray_object(out, np, prev, start):
                 return
@@ -899,6 +902,14 @@ class ClauseParser(Grammar):
         self.notes.append(f"{np.noun!r} is the target, {predicate} the {head.noun!r} named first")
         out.head = np
         return True
+
+    def _pointed_one(self, start: int) -> bool:
+        """Whether "that one" / "this one" stands at ``start``: a thing pointed at."""
+        words = self.toks[start].text.split()
+        if words[1:] in (["one"], ["ones"]):
+            return words[0] in _POINTING  # one token: "that one"
+        nxt = self.toks[start + 1] if start + 1 < len(self.toks) else None
+        return words[0] in _POINTING and nxt is not None and nxt.has("one")
 
     def _acted_on(self, out: Clause, thing: NP) -> bool:
         """A person as the head and a thing a verb acts on ("the kids can't reach the
