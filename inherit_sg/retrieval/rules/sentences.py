@@ -196,11 +196,9 @@ def _errand_run_on(sentence: list[Word], verb: int) -> list[Word] | None:
         if k >= len(sentence) - 1 or sentence[k].lemma not in _SEEKING:
             continue
         errand = sentence[k:]
-        if sentence[k].tag not in ("VB", "VBP") or any(w.text in ("one", "ones") for w in errand):
+        if sentence[k].tag not in ("VB", "VBP"):
             return None
-        thing = _first_head(errand[1:])
-        cautioned = _first_head(sentence[verb + 1 : j])
-        return errand if thing is not None and thing != cautioned else None
+        return errand if _names_another(errand, sentence[verb + 1 : j]) else None
     return None
 
 
@@ -255,9 +253,15 @@ def _errand_of_another(errand: list[Word], cautioned: list[Word]) -> bool:
         i += 1
     if i >= len(errand) or errand[i].lemma not in FETCH_VERBS:
         return False
+    return _names_another(errand[i:], cautioned)
+
+
+def _names_another(errand: list[Word], cautioned: list[Word]) -> bool:
+    """Whether an errand (from its verb) names a thing other than the ``cautioned`` words
+    name, and says no "one" ("take the red one" is the cautioned kind again)."""
     if any(w.text in ("one", "ones") for w in errand):
         return False
-    head = _first_head(errand[i + 1 :])
+    head = _first_head(errand[1:])
     return head is not None and head != _first_head(cautioned)
 
 
