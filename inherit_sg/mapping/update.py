@@ -50,6 +50,7 @@ from inherit_sg.model import (
     SceneGraph,
     make_id,
 )
+from inherit_sg.model.doorways import doorway_rooms, doorways_of
 from inherit_sg.perception.describer import UNNAMED, is_round_footprint, template_description
 
 _NUMBERS = re.compile(r"\d+(?:\.\d+)?")
@@ -123,11 +124,17 @@ class HierarchyBuilder:
         self._embedded_text: dict[str, str] = {}
 
     @staticmethod
-    def _label_rooms(rooms: dict[str, RoomNode], by_room: dict[str, list[ObjectNode]]) -> None:
-        """Infer every room's type distribution from its objects' labels and its mask's
-        size and shape (and whether its storey holds the building's entrance, an
-        exterior door, while another does), apply the one-per-storey prior floor by floor
-        (:func:`separate_single_types`); each label is its room's best type."""
+    def _label_rooms(
+        rooms: dict[str, RoomNode],
+        by_room: dict[str, list[ObjectNode]],
+        in_doorways: dict[str, list[ObjectNode]],
+    ) -> None:
+        """Infer every room's type distribution from its objects' labels (with the
+        objects standing in its doorways from the other side, ``in_doorways``: a hall is
+        where many doors open) and its mask's size and shape (and whether its storey
+        holds the building's entrance, an exterior door, while another does), apply the
+        one-per-storey prior floor by floor (:func:`separate_single_types`); each label
+        is its room's best type."""
         floors: dict[str | None, dict[str, list[tuple[str, float]]]] = {}
         entrances = {
             room.floor_id
@@ -135,7 +142,7 @@ class HierarchyBuilder:
             if any(o.label == EXTERIOR_DOOR for o in by_room.get(room_id, []))
         }
         for room_id, room in rooms.items():
-            labels = [o.label for o in by_room.get(room_id, [])]
+            labels = [o.label for o in by_room.get(room_id, []) + in_doorways.get(room_id, [])]
             off_entrance = bool(entrances) and room.floor_id not in entrances
             types = infer_room_types(labels, shape=room_shape(room.mask), off_entrance=off_entrance)
             floors.setdefault(room.floor_id, {})[room_id] = types
@@ -220,7 +227,7 @@ class HierarchyBuilder:
         areas_wanted: dict[str, AreaNode] = {}
         has_area: list[Edge] = []
         has_object: list[Edge] = []
-        self._label_rooms(rooms, by_room)
+        self._label_rooms(rooms, by_room, _doorway_members(graph, rooms, by_room))
         for room_id, members in sorted(by_room.items()):
             if room_id not in rooms:
                 continue
@@ -358,3 +365,29 @@ class HierarchyBuilder:
             text = node_text(node)
             if text is not None and getattr(node, "text_embedding", None) is not None:
                 self._embedded_text[node.id] = _wording(text)
+
+
+def _doorway_members(
+    graph: SceneGraph, rooms: dict[str, RoomNode], by_room: dict[str, list[ObjectNode]]
+) -> dict[str, list[ObjectNode]]:
+    """Room id → the objects mapped in another room that stand in a doorway of this one
+    (see :mod:`inherit_sg.model.doorways`)."""
+    placed = [(room_id, o) for room_id in sorted(by_room) for o in by_room[room_id]]
+    members = [o for _, o in placed]
+    if not members:
+        return {}
+    doorways = doorways_of(graph, lambda rid: rooms[rid].floor_id if rid in rooms else None)
+    if not doorways:
+        return {}
+    found = doorway_rooms(
+        np.array([o.bbox.min for o in members], dtype=float).reshape(-1, 3),
+        np.array([o.bbox.max for o in members], dtype=float).reshape(-1, 3),
+        [o.floor_id for o in members],
+        [room_id for room_id, _ in placed],
+        doorways,
+    )
+    out: dict[str, list[ObjectNode]] = defaultdict(list)
+    for row, others in sorted(found.items()):
+        for room_id in others:
+            out[room_id].append(members[row])
+    return dict(out)

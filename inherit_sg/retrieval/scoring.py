@@ -74,6 +74,9 @@ _AS_CLOSEST = Superlative(measure="closest")
 # A label / function similarity at least this strong means "is what was named" (exact,
 # a kind of it, a likely function kind), not merely "resembles it".
 STRONG_MATCH = 0.5
+# share of a room's similarity that an object standing in a doorway gets from the room
+# on the doorway's other side (see MapSnapshot.doorway_rooms)
+DOORWAY_SHARE = 0.9
 # A label / function similarity at least this strong means the candidate surely is the
 # kind asked for; when one on the allowed floors is, things that are not the kind at all
 # (below STRONG_MATCH) rank after every candidate that is, whatever negations cost.
@@ -375,8 +378,7 @@ class Scorer:
             if rows is not None:
                 places, codes = snap.memo(("place_codes", con.kind), lambda: _codes(snap, con.kind))
                 return _by_code(rows, codes, places, lambda k: self._place_sim(spec, con, k))
-            places_of = snap.room_of if con.kind == "room" else snap.area_of
-            keys = [places_of.get(i) or "" for i in table.ids]
+            keys = [snap.place_key(i, con.kind) for i in table.ids]
             found = self._by_key(keys, lambda k: self._place_sim(spec, con, k))
         else:
             found = [self._sim(spec, con, i, cands) for i in table.ids]
@@ -409,9 +411,20 @@ class Scorer:
         return sim, why or f"label '{label}' does not match"
 
     def _place_sim(self, spec: NodeSpec, con: Constraint, place: str) -> tuple[float, str]:
-        """Room / area sim of a node in ``place`` (empty: in none)."""
+        """Room / area sim of a node in ``place`` (empty: in none; ``own|other…``: in a
+        doorway, see :meth:`MapSnapshot.place_key`). A doorway's other rooms count at
+        :data:`DOORWAY_SHARE`, so that of two doors that match alike, the one mapped in
+        the room asked for comes first."""
         if not place:
             return 0.0, f"not in any {con.kind}"
+        if "|" in place:
+            own, *others = place.split("|")
+            best = self._place_sim(spec, con, own)
+            for other in others:
+                sim, why = self._place_sim(spec, con, other)
+                if sim * DOORWAY_SHARE > best[0]:
+                    best = (sim * DOORWAY_SHARE, f"in the doorway from {own} to {other}: {why}")
+            return best
         hit = spec.matches.get(con.id, {}).get(place)
         if hit is not None:
             return hit
@@ -432,8 +445,7 @@ class Scorer:
             label = getattr(node, "label", "")
             return self._label_sim(spec, con, key, label, cands.text_sim.get(node_id, 0.0))
         if con.kind in ("room", "area"):
-            place = (snap.room_of if con.kind == "room" else snap.area_of).get(node_id)
-            return self._place_sim(spec, con, place or "")
+            return self._place_sim(spec, con, snap.place_key(node_id, con.kind))
         if isinstance(con, AttributeConstraint):
             return attribute_sim(snap, node_id, con)
         if isinstance(con, PlacementConstraint):
@@ -728,8 +740,7 @@ def _codes(snap: MapSnapshot, what: str) -> tuple[list[str], np.ndarray]:
     if what == "label":
         values = [snap.objects[i].label for i in snap.obj_ids]
     else:
-        places = snap.room_of if what == "room" else snap.area_of
-        values = [places.get(i) or "" for i in snap.obj_ids]
+        values = [snap.place_key(i, what) for i in snap.obj_ids]
     names = list(dict.fromkeys(values))
     index = {name: k for k, name in enumerate(names)}
     return names, np.array([index[v] for v in values], dtype=np.int64).reshape(-1)

@@ -26,6 +26,7 @@ from inherit_sg.model import (
     RoomNode,
     SceneGraph,
 )
+from inherit_sg.model.doorways import doorway_rooms, doorways_of
 from inherit_sg.retrieval.labels import map_label_kinds
 from inherit_sg.retrieval.sizes import kind_sizes
 from inherit_sg.store import MapStore
@@ -88,6 +89,9 @@ class MapSnapshot:
     room_alternatives: dict[str, tuple[tuple[str, float], ...]] = field(default_factory=dict)
     relations: dict[str, dict[str, set[str]]] = field(default_factory=dict)
     neighbours: dict[str, set[str]] = field(default_factory=dict)
+    # object id → the other rooms of the doorway it stands in (a door mapped in the
+    # hall is the kitchen's door too); objects in no doorway are absent
+    doorway_rooms: dict[str, tuple[str, ...]] = field(default_factory=dict)
     adjacent: dict[str, set[str]] = field(default_factory=dict)
     seen_in: dict[tuple[str, str], dict[str, Any]] = field(default_factory=dict)
     # objects as arrays, row i = obj_ids[i]: box corners, centroid, floor level (-1: unknown)
@@ -121,6 +125,16 @@ class MapSnapshot:
         fid = self.floor_of.get(node_id)
         floor = self.floors.get(fid) if fid else None
         return floor.z_min if floor is not None else 0.0
+
+    def place_key(self, node_id: str, kind: str) -> str:
+        """The room (``kind`` = ``room``) or area (``area``) a node is in, as a key of
+        the room / area terms: its own id, then for a room the other rooms of the
+        doorway it stands in, joined by ``|`` (``""``: in none)."""
+        if kind != "room":
+            return self.area_of.get(node_id) or ""
+        own = self.room_of.get(node_id) or ""
+        also = self.doorway_rooms.get(node_id)
+        return "|".join((own, *also)) if also and own else own
 
     def node(self, node_id: str) -> ObjectNode | RoomNode | AreaNode | FloorNode | None:
         """The node with ``node_id`` among the four layers (None when absent)."""
@@ -209,6 +223,18 @@ def _index_objects(snap: MapSnapshot) -> None:
     snap.by_label = by_label
 
 
+def _doorway_rooms(snap: MapSnapshot, graph: SceneGraph) -> dict[str, tuple[str, ...]]:
+    """Object id → the other rooms of the doorways it stands in (see
+    :mod:`inherit_sg.model.doorways`)."""
+    doorways = doorways_of(graph, snap.floor_of.get)
+    if not doorways:
+        return {}
+    floors = [snap.floor_of.get(oid) for oid in snap.obj_ids]
+    rooms = [snap.room_of.get(oid) for oid in snap.obj_ids]
+    found = doorway_rooms(snap.lo, snap.hi, floors, rooms, doorways)
+    return {snap.obj_ids[row]: others for row, others in found.items()}
+
+
 def build_snapshot(
     graph: SceneGraph, version: Version = (), *, use_areas: bool = True
 ) -> MapSnapshot:
@@ -265,6 +291,7 @@ def build_snapshot(
         neighbours[edge.src].add(edge.dst)
         neighbours[edge.dst].add(edge.src)
     snap.neighbours = dict(neighbours)
+    snap.doorway_rooms = _doorway_rooms(snap, graph)
     snap.seen_in = _seen_in(graph)
     return snap
 

@@ -163,13 +163,16 @@ def _thing_of(words: list[Word]) -> list[Word]:
 def _without_cautions(sentences: list[list[Word]]) -> list[list[Word]]:
     """The request without a caution before an errand about another thing ("don't wake
     the baby, just get her bottle", "don't be shy, bring the whole box"): the caution
-    rules nothing out. Kept when the errand names the caution's thing again or says
-    "one" ("don't touch the blue mug, take the red one")."""
+    rules nothing out, and "it" in the errand is the caution's thing ("… get the remote
+    off it"). Kept when the errand names the caution's thing again or says "one" ("don't
+    touch the blue mug, take the red one")."""
     out: list[list[Word]] = []
+    sentences = list(sentences)  # (a next sentence may be reworded below)
     for n, sentence in enumerate(sentences):
         verb = _caution_verb(sentence)
         nxt = sentences[n + 1] if n + 1 < len(sentences) else []
         if verb is not None and nxt and _errand_of_another(nxt, sentence[verb + 1 :]):
+            sentences[n + 1] = _it_as_cautioned(nxt, sentence[verb + 1 :])
             continue
         if verb is not None and (errand := _errand_run_on(sentence, verb)) is not None:
             out.append(errand)  # "dont worry about the dishes just find the cat food"
@@ -198,8 +201,24 @@ def _errand_run_on(sentence: list[Word], verb: int) -> list[Word] | None:
         errand = sentence[k:]
         if sentence[k].tag not in ("VB", "VBP"):
             return None
-        return errand if _names_another(errand, sentence[verb + 1 : j]) else None
+        cautioned = sentence[verb + 1 : j]
+        return _it_as_cautioned(errand, cautioned) if _names_another(errand, cautioned) else None
     return None
+
+
+def _it_as_cautioned(errand: list[Word], cautioned: list[Word]) -> list[Word]:
+    """``errand`` with "it" / "them" after a preposition read as the thing the caution
+    named ("don't bump the table, just get the remote off it" → "… off the table")."""
+    thing = _thing_of(cautioned)
+    if not thing:
+        return errand
+    out: list[Word] = []
+    for k, word in enumerate(errand):
+        if word.text in ("it", "them") and k > 0 and errand[k - 1].pos == "ADP":
+            out.extend(thing)
+        else:
+            out.append(word)
+    return out
 
 
 def _it_is_the(sentence: list[Word], k: int) -> bool:
@@ -270,8 +289,8 @@ def _first_head(words: list[Word]) -> str | None:
     "the baby monitor from the nursery")."""
     head = None
     for w in words:
-        if w.pos in ("NOUN", "PROPN"):
-            head = w.lemma
+        if w.pos in ("NOUN", "PROPN") or (w.pos == "ADJ" and canonical_label(w.text)):
+            head = w.lemma  # ("remote" is tagged an adjective)
         elif head is not None:
             break
     return head
