@@ -75,6 +75,8 @@ MEASURES = (
     "farthest",
     "ordinal",
     "middle",
+    "most",
+    "fewest",
 )
 # Directions an ordinal counts from, as the viewer sees them ("the second from the left";
 # "front" = nearest the viewer first, "back" = farthest first).
@@ -293,7 +295,9 @@ class Superlative(_Constraint):
     """Rank the candidates: by size/height, by distance to ``landmark`` (to the viewer
     when None), by ``ordinal`` position (2 = second; -1 = last) or the ``middle`` one,
     counted from ``direction`` (``DIRECTIONS``, as the viewer sees them) when given;
-    without a direction an ordinal counts from the viewer outwards ("the second door")."""
+    without a direction an ordinal counts from the viewer outwards ("the second door");
+    ``most`` / ``fewest``: by how many of the ``landmark`` things each holds or has on or
+    beside it ("the shelf with the most books", "the floor with the most bedrooms")."""
 
     kind: ClassVar[str] = "superlative"
     measure: str = "largest"

@@ -102,6 +102,8 @@ def _body(con: Constraint) -> str:
         return f"#{con.ordinal}{side}"
     if con.measure in ("closest", "farthest"):
         return f"{con.measure} to {_landmark_text(con.landmark)}"
+    if con.measure in ("most", "fewest") and con.landmark is not None:
+        return f"{con.measure} {_landmark_text(con.landmark)}"
     return con.measure
 
 

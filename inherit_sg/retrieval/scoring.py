@@ -97,7 +97,7 @@ LANDMARK_REACH = 5.0
 # Superlatives measured on an object's box (compared only between well-observed boxes).
 BOX_MEASURES = frozenset({"largest", "smallest", "tallest", "shortest", "widest", "narrowest"})
 # Measures ranked from the top down ("the largest"); the others from the bottom up.
-MAX_MEASURES = frozenset({"largest", "tallest", "highest", "widest", "farthest"})
+MAX_MEASURES = frozenset({"largest", "tallest", "highest", "widest", "farthest", "most"})
 # Ordinals and "the middle one": the chosen candidate scores 1, the others this much
 # over (1 + their rank distance); of an even tier's two central ones, the one farther
 # from the viewer scores MIDDLE_RUNNER_UP.
@@ -565,7 +565,26 @@ class Scorer:
         if con.measure in ("closest", "farthest") and viewer is not None:
             here = self.snap.position(node_id)
             return math.dist(here[:2], viewer) if here is not None else None
+        if con.measure in ("most", "fewest") and landmarks:
+            return float(len(self._counted(node_id, best_landmarks(landmarks))))
         return None
+
+    def _counted(self, node_id: str, things: list[str]) -> list[str]:
+        """Which of ``things`` a node holds: a floor or room the things on it or in it, an
+        area its members, an object those its stored relations join it to ("the books on
+        the shelf") or that stand within reach of it."""
+        snap = self.snap
+        if node_id in snap.floors:
+            return [t for t in things if snap.floor_of.get(t) == node_id and t != node_id]
+        if node_id in snap.rooms or node_id in snap.areas:
+            places = snap.room_of if node_id in snap.rooms else snap.area_of
+            return [t for t in things if places.get(t) == node_id and t != node_id]
+        joined = snap.adjacent.get(node_id, set())
+        return [
+            t
+            for t in things
+            if t != node_id and (t in joined or self.checker.holds(node_id, t, "near")[0])
+        ]
 
     def _measured_boxes(self, con: Superlative, tier: list[Scored]) -> list[Scored]:
         """The tier without objects whose box comes from a single view (often a sliver

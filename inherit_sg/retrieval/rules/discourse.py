@@ -24,13 +24,15 @@ from inherit_sg.retrieval.constraints import (
     Superlative,
 )
 from inherit_sg.retrieval.rules.clause import Clause
+from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.grammar import Grammar
-from inherit_sg.retrieval.rules.phrase import ANAPHOR, NP, OBJECT, ONE, ROOM
+from inherit_sg.retrieval.rules.phrase import ANAPHOR, FLOOR, NP, OBJECT, ONE, ROOM
 from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import Word
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label, is_kind_of
+from inherit_sg.vocab.rooms import room_type
 
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
 _MAIN_VERB = frozenset({"ROOT", "ccomp", "conj", "parataxis"})
@@ -420,6 +422,10 @@ def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str])
         return
     if sentence[0].text not in ("which", "what"):
         return
+    if any(
+        isinstance(c, Superlative) and c.measure in ("most", "fewest") for c in head.constraints
+    ):
+        return  # "which room has the most chairs": the room is asked for
     held = [
         c
         for c in head.constraints
@@ -443,3 +449,54 @@ def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str])
     thing.places = [*room, *rest, *head.places]
     notes.append(f"'{sentence[0].text} {head.noun} …': found by finding {target.noun!r}")
     clause.head = thing
+
+
+# Words that count: "the shelf with the most books", "the desk with the fewest monitors".
+_COUNT_MEASURES = {"most": "most", "fewest": "fewest", "least": "fewest"}
+
+
+def count_superlative(clause: Clause, words: list[Word], notes: list[str]) -> None:
+    """ "the shelf with the most books", "which room has the fewest chairs", "the floor
+    with the most bedrooms": the head holds things of the kind a relation of it names
+    (its landmark), and "the most" / "the fewest" before that kind ranks the candidates by
+    how many they hold: a ``most`` / ``fewest`` superlative on that landmark. A storey
+    noun ("which floor has the most bedrooms") then names a storey, not the floor one
+    walks on. In place."""
+    head = clause.head
+    if head is None or clause.head_negated:
+        return
+    texts = [w.text for w in words]
+    for k, text in enumerate(texts):
+        measure = _COUNT_MEASURES.get(text)
+        if measure is None or k == 0 or texts[k - 1] != "the":
+            continue
+        j = k + 1
+        if texts[j : j + 2] == ["number", "of"]:
+            j += 2  # "the most number of chairs"
+        counted = next((w for w in words[j : j + 3] if w.pos in ("NOUN", "PROPN")), None)
+        if counted is None or not (canonical_label(counted.lemma) or room_type(counted.lemma)):
+            continue  # "which room gets the most sun": nothing to count
+        for con in head.constraints:
+            if (
+                isinstance(con, RelationConstraint)
+                and not con.negated
+                and con.predicate in ("with", "contains", "supports", "on", "near", "next_to")
+                and con.landmark.target.noun.split()[-1:] == [counted.text]
+            ):
+                head.constraints.append(
+                    Superlative(
+                        measure=measure,
+                        landmark=con.landmark,
+                        weight=weighted("superlative", None),
+                        text=f"the {text} {con.landmark.target.noun}",
+                    )
+                )
+                notes.append(f"'the {text} {counted.text}': ranked by how many it holds")
+                if (
+                    head.kind == OBJECT
+                    and head.words[-1:]
+                    and head.words[-1] in lexicon().floor_nouns
+                ):
+                    head.kind, head.labels = FLOOR, ["floor"]
+                    head.constraints = [c for c in head.constraints if c is not con]
+                return

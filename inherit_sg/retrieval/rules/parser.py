@@ -24,6 +24,7 @@ from inherit_sg.retrieval.rules.assemble import assemble
 from inherit_sg.retrieval.rules.clause import Clause, ClauseParser, parts_of_head, turned_round
 from inherit_sg.retrieval.rules.discourse import (
     asks_for_object,
+    count_superlative,
     description_after_it,
     hand_over,
     picks_out,
@@ -381,6 +382,7 @@ def parse_uncached(text: str) -> ParsedQuery:
         clause.implied.append(unknown_problem)
     if sentences and denies_first(sentences[0]):
         _denied_details(clause, notes)
+    count_superlative(clause, words, notes)
     if len(sentences) == 1:
         thing_the_room_holds(clause, sentences[0], notes)
     point_it_at_view(clause)
