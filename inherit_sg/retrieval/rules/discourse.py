@@ -214,7 +214,7 @@ def split_scene(sentence: list[Word]) -> list[list[Word]]:
 
 def _sets_scene(sentence: list[Word]) -> str | None:
     """How a first sentence sets the scene: "there" ("there is a desk …", "you see the
-    big window?"), "fragment" (a thing and its place, no verb: "sink under the mirror",
+    big window?", "see the washing machine?", "do you see the microwave?"), "fragment" (a thing and its place, no verb: "sink under the mirror",
     or a thing that stands somewhere: "a couch sits under the window"), "statement" ("the
     bed is in the middle of the room"), or None for a sentence that says which thing is
     meant ("this is a chair", "find the lamp", "the chair is brown")."""
@@ -225,6 +225,9 @@ def _sets_scene(sentence: list[Word]) -> str | None:
         return "there"
     if words[0].text == "you" and words[1].lemma == "see":
         return "there"  # "you see the desk facing the wall?"
+    texts = [w.text for w in words[:3]]
+    if texts[:1] == ["see"] or texts in (["do", "you", "see"], ["can", "you", "see"]):
+        return "there"  # "See the washing machine? The detergent bottle on top of it."
     if words[0].pos == "VERB" and words[0].tag == "VB" and canonical_label(words[0].text) is None:
         return None  # "find the copier", "select the chair" (not "sink under the mirror")
     verbs = [w for w in words if w.tag in FINITE and w.pos in ("VERB", "AUX")]
@@ -340,6 +343,8 @@ def picks_out(sentence: list[Word]) -> bool:
     "the lamp by the door is the one I mean" ("this is the one" names nothing new)."""
     if _names_the_object(sentence):
         return True  # a short closing "it is the floor lamp", "the object is the projector"
+    if _speaker_means(sentence):
+        return True  # "I'm talking about the vise", "I mean the one with the lid"
     if not sentence or sentence[0].text in _IDENTIFYING:
         return False
     if sentence[0].pos not in ("DET", "ADJ", "NOUN", "PROPN"):
@@ -351,6 +356,11 @@ def picks_out(sentence: list[Word]) -> bool:
             # it is the one on the far right")
             materials = lexicon().materials
             return any(w.pos in ("NOUN", "PROPN") and w.text not in materials for w in sentence[:j])
+    for j in range(1, len(sentence) - 2):  # "the cart is what I want"
+        if sentence[j].lemma == "be" and texts[j + 1] == "what" and texts[j + 2] in _CHOOSERS:
+            k = j + 4 if texts[j + 3 : j + 4] in (["am"], ["are"]) else j + 3
+            if k < len(sentence) and sentence[k].lemma in _PICKING:
+                return ends_with_thing(sentence[:j])
     for i in range(1, len(sentence) - 1):  # "the cabinet (that) we want …"
         j = i + 1 if texts[i] in ("that", "which") else i
         if j + 1 >= len(sentence) or texts[j] not in _CHOOSERS:
@@ -362,8 +372,12 @@ def picks_out(sentence: list[Word]) -> bool:
 
 
 # Openings of a short sentence that names the object meant: "it is the …", "the object
-# is the …".
-_NAMING_OPENINGS = (("it", "is", "the"), ("the", "object", "is", "the"))
+# is the …", "the target is the …".
+_NAMING_OPENINGS = (
+    ("it", "is", "the"),
+    ("the", "object", "is", "the"),
+    ("the", "target", "is", "the"),
+)
 
 
 def _names_the_object(sentence: list[Word]) -> bool:
@@ -377,13 +391,47 @@ def _names_the_object(sentence: list[Word]) -> bool:
     return 1 <= len(rest) <= 3 and rest[-1].pos in ("NOUN", "PROPN")
 
 
+# Verbs after "I'm" that say which thing the speaker means: "I'm talking about the vise".
+_MEANING = (("talking", "about"), ("referring", "to"), ("thinking", "of"))
+
+
+def _speaker_means(sentence: list[Word]) -> bool:
+    """Whether ``sentence`` opens "I'm talking about …", "I am referring to …", "I mean
+    the …", followed by a thing."""
+    texts = [w.text for w in sentence]
+    if texts[:1] != ["i"]:
+        return False
+    k = 2 if texts[1:2] == ["am"] else 1
+    if texts[k : k + 1] == ["mean"]:
+        k += 1
+    elif tuple(texts[k : k + 2]) in _MEANING:
+        k += 2
+    else:
+        return False
+    return k < len(sentence) and sentence[k].pos == "DET" and ends_with_thing(sentence[k:])
+
+
+# Where a sentence may run on into a part that says which thing is meant, and the words
+# that may follow the break (", and the thing I mean is …").
+_RUN_ON_BREAKS = frozenset({",", ";", "-"})
+_RUN_ON_LINKS = frozenset({"and", "but", "so"})
+
+
 def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
-    """A sentence that runs on after a comma into a part that says which thing is meant
-    ("in the kitchen there's a counter …, the kitchen cabinet we want is the one above
-    the sink, …") as two sentences."""
+    """A sentence that runs on after a comma (and "and") into a part that says which
+    thing is meant ("in the kitchen there's a counter …, the kitchen cabinet we want is the one
+    above the sink, …", "… with a diaper pail beside it, and the thing I mean is the
+    diaper pail") as two sentences."""
     for j, word in enumerate(sentence):
-        if word.text == "," and j >= 2 and picks_out(sentence[j + 1 :]):
-            return [sentence[:j], sentence[j + 1 :]]
+        if word.text not in _RUN_ON_BREAKS or j < 2:
+            continue
+        k = j + 1
+        while k < len(sentence) and sentence[k].text in _RUN_ON_LINKS:
+            k += 1
+        if [w.text for w in sentence[k : k + 2]] == ["the", "one"]:
+            continue  # "…, and the one I mean is the one with …": says more of the same
+        if k < len(sentence) and picks_out(sentence[k:]):
+            return [sentence[:j], sentence[k:]]
     return [sentence]
 
 
@@ -500,3 +548,19 @@ def count_superlative(clause: Clause, words: list[Word], notes: list[str]) -> No
                     head.kind, head.labels = FLOOR, ["floor"]
                     head.constraints = [c for c in head.constraints if c is not con]
                 return
+
+
+# Verbs of a closing errand that points back at the last thing named ("Go to that.").
+_POINTING_ERRANDS = frozenset({"go", "find", "get", "grab", "bring", "fetch", "pick", "choose"})
+
+
+def points_back(sentence: list[Word]) -> bool:
+    """Whether ``sentence`` is only an errand at "that" / "it" / "this one" ("Go to that.",
+    "Find that.", "grab that one"): the thing meant is the last one named before it."""
+    texts = [w.text for w in sentence if w.text not in (",", "please", "just")]
+    if not texts or sentence[0].lemma not in _POINTING_ERRANDS or len(texts) > 4:
+        return False
+    rest = texts[1:]
+    if rest[:1] in (["to"], ["me"]):
+        rest = rest[1:]
+    return rest in (["that"], ["this"], ["it"], ["that", "one"], ["this", "one"])

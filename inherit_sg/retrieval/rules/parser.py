@@ -29,6 +29,7 @@ from inherit_sg.retrieval.rules.discourse import (
     hand_over,
     picks_out,
     point_it_at_view,
+    points_back,
     same_thing,
     scene_then_target,
     split_at_pick,
@@ -151,6 +152,10 @@ def _merge_sentence(
             return
         ClauseParser._exclude(out, other)  # "Under the window, the heater. Not the fan."
         return
+    if other is not None and more.head_negated and other.kind == ROOM and head.kind == OBJECT:
+        # "… It's in the hall bathroom. Not the master bath, the one the kids use."
+        out.places.append(replace(Grammar.room_place(other), negated=True))
+        return
     if (
         other is not None
         and out.head_negated
@@ -224,6 +229,20 @@ def _another_thing(clause: Clause, more: Clause) -> bool:
     )
 
 
+def _one_of_the_named(clause: Clause, more: Clause) -> bool:
+    """Whether a later sentence names one of the several kinds the target so far joins
+    ("a glass cup … and a tube of toothpaste" then "the target is the cup")."""
+    head, other = clause.head, more.head
+    return (
+        head is not None
+        and other is not None
+        and len(head.labels) > 1
+        and bool(other.labels)
+        and set(other.labels) < set(head.labels)
+        and not more.head_negated
+    )
+
+
 def _speaker_situation(sentence: list[Word]) -> bool:
     """Whether a sentence says where the speaker is ("I'm sitting on the edge of the bed
     facing the window", "I am at the counter"): "I" / "we", then within three words a
@@ -288,6 +307,12 @@ def parse_uncached(text: str) -> ParsedQuery:
     situation = False
     placed_speaker = False  # a first sentence only said where the speaker is
     said_again = False  # a later sentence said more of the target ("… It is white.")
+    if len(sentences) > 2 and points_back(sentences[-1]):
+        # "… Behind it, against the wall, is a console table. Go to that."
+        notes.append("the last sentence points at the thing named just before it")
+        sentences, pointed = sentences[:-1], len(sentences) - 2
+    else:
+        pointed = -1
     for n, sentence in enumerate(sentences):
         tokens = tag(sentence)
         if clause.head is None:
@@ -336,7 +361,17 @@ def parse_uncached(text: str) -> ParsedQuery:
                 more.excluded_labels += clause.excluded_labels
             clause = more
             continue
-        if not correcting and picks_out(sentence) and _another_thing(clause, more):
+        if not correcting and picks_out(sentence) and _one_of_the_named(clause, more):
+            # "… a glass cup with two toothbrushes in it, and a tube of toothpaste
+            # beside it. The target is the cup."
+            assert clause.head is not None and more.head is not None
+            notes.append(f"{more.head.noun!r} is said to be the one of those named")
+            clause.head.labels = list(more.head.labels)
+            clause.head.words = list(more.head.words)
+            clause.head.plural = more.head.plural
+            continue
+        chosen = picks_out(sentence) or n == pointed
+        if not correcting and chosen and _another_thing(clause, more):
             # "find the copier first. the recycling bin on its left side is the one"
             assert more.head is not None
             notes.append(f"{more.head.noun!r} is said to be the one meant")

@@ -11,6 +11,8 @@ request is set aside, and a run-on is split.
 
 from __future__ import annotations
 
+from itertools import pairwise
+
 from inherit_sg.retrieval.rules.rewording import (
     another_as_one_more,
     besides_as_beside,
@@ -68,7 +70,8 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
         without_sign_negation(another_as_one_more(without_moved_away(s))) for s in sentences
     ]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
-    sentences = [_after_but_it_is(sentence) for sentence in sentences]
+    sentences = [_after_but_it_is(_without_hedged_guess(sentence)) for sentence in sentences]
+    sentences = [_without_contact_clause(sentence) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
@@ -246,6 +249,71 @@ def _after_but_it_is(sentence: list[Word]) -> list[Word]:
                 return sentence[j + 1 :]
             return sentence
     return sentence
+
+
+# Openings of a guess at what a thing is made of or coloured, after a comma: "…, might be
+# laminate", "…, or maybe acrylic idk".
+_GUESSES = (("might", "be"), ("may", "be"), ("could", "be"), ("or", "maybe"), ("maybe",),
+            ("probably",), ("possibly",), ("or", "possibly"), ("or", "probably"))  # fmt: skip
+_UNSURE = frozenset({"idk", "dunno", "not", "sure", "i", "think", "guess", "or", "something"})
+
+
+def _without_hedged_guess(sentence: list[Word]) -> list[Word]:
+    """A thing named, then a guess at its material or colour after a comma ("the
+    wooden-ish stool, might be laminate", "the glass-topped table, or maybe acrylic
+    idk"): the guess is left out (up to the next comma), so that its word is not read
+    as the thing sought."""
+    for k, word in enumerate(sentence):
+        if word is not COMMA or not any(w.pos == "NOUN" for w in sentence[:k]):
+            continue
+        texts = [w.text for w in sentence[k + 1 :]]
+        opening = next((g for g in _GUESSES if tuple(texts[: len(g)]) == g), None)
+        if opening is None:
+            continue
+        end = next((j for j, t in enumerate(texts) if t == ","), len(texts))
+        guess = sentence[k + 1 + len(opening) : k + 1 + end]
+        if guess and all(
+            w.pos in ("ADJ", "ADV", "CCONJ") or w.text in _UNSURE or _names_stuff(w.text)
+            for w in guess
+        ):
+            return sentence[:k] + sentence[k + 1 + end :]
+    return sentence
+
+
+def _names_stuff(word: str) -> bool:
+    """Whether ``word`` names a material or a colour (not a thing)."""
+    from inherit_sg.vocab.colours import colour_words
+
+    return word in lexicon().materials or word in colour_words()
+
+
+def _without_contact_clause(sentence: list[Word]) -> list[Word]:
+    """ "the one the kids use", "the one my dad sits in": a relative clause without "that"
+    after "one", whose subject someone else is, says whose or what for, not what the
+    thing is; left out (up to the next comma), so that its subject is not read as the
+    thing sought. "the one I mean" stays (it says which is meant)."""
+    for k, word in enumerate(sentence[:-2]):
+        if word.text not in ("one", "ones"):
+            continue
+        j = k + 1
+        if sentence[j].text in _SUBJECT_DETERMINERS:
+            j += 1
+        if j >= len(sentence) or sentence[j].pos not in ("NOUN", "PROPN"):
+            continue
+        j += 1
+        if j >= len(sentence) or sentence[j].pos != "VERB" or sentence[j].tag not in FINITE:
+            continue
+        end = next((i for i in range(j, len(sentence)) if sentence[i] is COMMA), len(sentence))
+        clause = sentence[j + 1 : end]
+        if any(w.pos == "ADP" and n.pos in ("DET", "NOUN", "PROPN") for w, n in pairwise(clause)):
+            continue  # "the red one Dave left in the garage": where it is
+        return sentence[: k + 1] + sentence[end:]
+    return sentence
+
+
+# Determiners of the subject of a relative clause without "that" ("the one the kids
+# use", "the one my dad sits in"); not "any" ("the red one any umbrella works").
+_SUBJECT_DETERMINERS = frozenset({"the", "my", "our", "his", "her", "their", "your"})
 
 
 def _without_trailing_caution(sentence: list[Word]) -> list[Word]:

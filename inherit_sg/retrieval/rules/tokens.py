@@ -95,9 +95,85 @@ A = Word("a", "a", "DET", "DT", "det")
 IN = Word("in", "in", "ADP", "IN", "prep")
 
 
+# A hedge in brackets after a word: "the leather(?) ottoman".
+_BRACKETED_DOUBT = re.compile(r"\(\s*\?+\s*\)")
+# "-ish" hedges: "wooden-ish", "brownish", "reddish", "bluish".
+_ISH = re.compile(r"\b([A-Za-z]+?)(-?)ish\b")
+# A hyphenated participle made from a noun: "glass-topped", "heart-shaped", "l-shaped".
+_HYPHEN_PARTICIPLE = re.compile(r"\b([A-Za-z]+)-([A-Za-z]+ed)\b")
+# "wall mounted", "ceiling-mounted": how a thing is fixed, written before its name.
+_MOUNTED = re.compile(r"\b(?:wall|ceiling)[- ](mounted|hung)\b", re.IGNORECASE)
+
+
+def _attribute_word(word: str) -> bool:
+    """Whether ``word`` names a colour or a material ("brown", "wooden")."""
+    from inherit_sg.vocab.colours import colour_words
+    from inherit_sg.vocab.lexicon import lexicon
+
+    return word in colour_words() or word in lexicon().materials
+
+
+def _without_ish(match: re.Match[str]) -> str:
+    """ "brownish" → "brown", "reddish" → "red", "bluish" → "blue", "wooden-ish" →
+    "wooden": the hedged colour or material; a word merely ending in "ish" ("dish",
+    "polish") stays."""
+    stem, hyphen = match.group(1), match.group(2)
+    low = stem.lower()
+    for guess in (low, low[:-1] if len(low) > 2 and low[-1] == low[-2] else "", low + "e"):
+        if guess and _attribute_word(guess):
+            return guess
+    return stem if hyphen else match.group(0)
+
+
+def _participle_compound(match: re.Match[str]) -> str:
+    """ "glass-topped table" → "glass table", "heart-shaped pillow" → "shaped pillow": a
+    colour or material before a participle made from a noun says what the thing is made
+    of; a noun ("heart", "star") says its shape, which the parser would otherwise take for
+    the thing itself. Adjectives and numbers ("high-backed", "three-legged") and letters
+    ("l-shaped") stay."""
+    first, participle = match.group(1), match.group(2)
+    low = first.lower()
+    if _attribute_word(low):
+        return first
+    noun = known_lemma(low, "noun") and not known_lemma(low, "adj")
+    if len(low) > 1 and low not in _NUMBER_WORDS and noun:
+        return participle
+    return match.group(0)
+
+
+_NUMBER_WORDS = frozenset(
+    {"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "single",
+     "double", "triple", "multi"}
+)  # fmt: skip
+
+
+# Words written on a thing, quoted or in capitals after a word of writing: "the binder
+# that says 'TAXES'", "the whiteboard that has DO NOT ERASE written on it".
+_SINGLE_QUOTED = re.compile(r"(?<![A-Za-z])'([^'\n]{1,40})'(?![A-Za-z])")
+_CAPITALS_WRITTEN = re.compile(
+    r"\b(says?|saying|reads?|reading|labell?ed|marked|has|have|with)\s+"
+    r"((?:[A-Z][A-Z']+\s+)+[A-Z][A-Z']+)\b"
+)
+
+
+def _without_written_words(text: str) -> str:
+    """``text`` without the words written on a thing (see ``_CAPITALS_WRITTEN``), so
+    that "DO NOT ERASE" rules nothing out; a request typed all in capitals keeps its
+    words."""
+    text = _SINGLE_QUOTED.sub(" ", text)
+    if not any(c.islower() for c in text):
+        return text
+    return _CAPITALS_WRITTEN.sub(lambda m: f"{m.group(1)} ", text)
+
+
 def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
+    text = _without_written_words(text)
+    text = _BRACKETED_DOUBT.sub(" ", text)
+    text = _ISH.sub(_without_ish, text)
+    text = _MOUNTED.sub(r"\1", text)  # (the surface is no thing sought)
+    text = _HYPHEN_PARTICIPLE.sub(_participle_compound, text)
     text = _MENTION.sub(" ", text)
     text = _CAMEL.sub(" ", text)
     text = _SPACED_DASH.sub(" \u2014", text)
@@ -188,10 +264,20 @@ _NONE_ON_IT = re.compile(
 )
 
 
+# "the table that has nothing on it", "a hanger with nothing on it": bare of anything
+_NOTHING_ON_IT = re.compile(
+    r"\b(?:(?:that|which) (?:has|have)|with|having) nothing (on|in|inside|on top of) (it|them)\b"
+    r"(?! (?:besides|except|but|other than|apart from)\b)",
+    re.IGNORECASE,
+)
+
+
 def absent_from(text: str) -> str:
     """ "there is no lamp on the desk" as "the lamp that is not on the desk" (also "no
-    monitors are on …", "the room has no … near …"), and "there is no lamp on it" as "it
-    has no lamp on it"; other text as is."""
+    monitors are on …", "the room has no … near …"), "there is no lamp on it" as "it
+    has no lamp on it", and "… that has nothing on it" as "… without anything on it";
+    other text as is."""
+    text = _NOTHING_ON_IT.sub(lambda m: f"without anything {m.group(1)} {m.group(2)}", text)
     text = _NONE_ON_IT.sub(
         lambda m: f"{m.group(3)} has no {m.group(1)} {m.group(2)} {m.group(3)}", text
     )
@@ -250,7 +336,7 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
         while words and words[-1] is COMMA:
             words.pop()
         if words:
-            out.append(_its_is(_nouns_read_as_verbs(words)))
+            out.append(_its_is(_shades_named_by_things(_nouns_read_as_verbs(words))))
     return out, fixes
 
 
@@ -291,6 +377,25 @@ def _nouns_read_as_verbs(words: list[Word]) -> list[Word]:
             if known_lemma(word.lemma, "adj") or known_lemma(word.text, "adj"):
                 continue
             out[i] = Word(word.text, word.text, "NOUN", "NN", word.dep)
+    return out
+
+
+def _shades_named_by_things(words: list[Word]) -> list[Word]:
+    """A noun that names the shade of the colour after it ("mustard yellow", "sky blue",
+    "forest green"), before the thing's name: an adjective, not the thing sought."""
+    from inherit_sg.vocab.colours import colour_words
+
+    colours = colour_words()
+    out = list(words)
+    for i in range(len(words) - 2):
+        word = words[i]
+        if word.pos not in ("NOUN", "PROPN") or word.text in colours:
+            continue
+        if words[i + 1].text not in colours or words[i + 2].pos not in ("NOUN", "PROPN"):
+            continue
+        if words[i + 1].pos == "NOUN":
+            continue  # "ice cream scoop": the colour word is a noun of a name
+        out[i] = Word(word.text, word.text, "ADJ", "JJ", word.dep)
     return out
 
 
