@@ -29,7 +29,7 @@ from inherit_sg.retrieval.rules.grammar import Grammar
 from inherit_sg.retrieval.rules.phrase import ANAPHOR, FLOOR, NP, OBJECT, ONE, ROOM
 from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
-from inherit_sg.retrieval.rules.tokens import Word
+from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label, is_kind_of
 from inherit_sg.vocab.rooms import room_type
@@ -345,6 +345,8 @@ def picks_out(sentence: list[Word]) -> bool:
         return True  # a short closing "it is the floor lamp", "the object is the projector"
     if _speaker_means(sentence):
         return True  # "I'm talking about the vise", "I mean the one with the lid"
+    if _denies_then_names(sentence):
+        return True  # "not the bench tho, the metronome sitting on the piano"
     if not sentence or sentence[0].text in _IDENTIFYING:
         return False
     if sentence[0].pos not in ("DET", "ADJ", "NOUN", "PROPN"):
@@ -391,19 +393,33 @@ def _names_the_object(sentence: list[Word]) -> bool:
     return 1 <= len(rest) <= 3 and rest[-1].pos in ("NOUN", "PROPN")
 
 
+def _denies_then_names(sentence: list[Word]) -> bool:
+    """Whether ``sentence`` opens "not the X, the Y …": it rules X out and names Y."""
+    if len(sentence) < 5 or sentence[0].text != "not" or sentence[1].pos != "DET":
+        return False
+    comma = next((k for k, w in enumerate(sentence) if w is COMMA), None)
+    if comma is None or comma + 2 >= len(sentence) or sentence[comma + 1].pos != "DET":
+        return False
+    return sentence[comma + 2].text not in ("one", "ones")  # "…, the one for the AC": same kind
+
+
 # Verbs after "I'm" that say which thing the speaker means: "I'm talking about the vise".
 _MEANING = (("talking", "about"), ("referring", "to"), ("thinking", "of"))
 
 
 def _speaker_means(sentence: list[Word]) -> bool:
     """Whether ``sentence`` opens "I'm talking about …", "I am referring to …", "I mean
-    the …", followed by a thing."""
+    the …", "I need the …", followed by a thing."""
     texts = [w.text for w in sentence]
     if texts[:1] != ["i"]:
         return False
     k = 2 if texts[1:2] == ["am"] else 1
     if texts[k : k + 1] == ["mean"]:
         k += 1
+    elif texts[k : k + 1] in (["need"], ["want"]):
+        k += 1  # a thing, not "I need a nap"
+        if not any(canonical_label(w.lemma) for w in sentence[k:] if w.pos == "NOUN"):
+            return False
     elif tuple(texts[k : k + 2]) in _MEANING:
         k += 2
     else:
@@ -430,6 +446,8 @@ def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
             k += 1
         if [w.text for w in sentence[k : k + 2]] == ["the", "one"]:
             continue  # "…, and the one I mean is the one with …": says more of the same
+        if k < len(sentence) and sentence[k].text == "not":
+            continue  # "the remote, not the tv one, the one for the AC": read whole
         if k < len(sentence) and picks_out(sentence[k:]):
             return [sentence[:j], sentence[k:]]
     return [sentence]

@@ -376,6 +376,9 @@ def parse_uncached(text: str) -> ParsedQuery:
             assert more.head is not None
             notes.append(f"{more.head.noun!r} is said to be the one meant")
             hand_over(clause, more)
+            more.excluded_labels += clause.excluded_labels
+            if clause.head_negated and clause.head is not None:
+                ClauseParser._exclude(more, clause.head)  # "anything but the sofa, I want …"
             clause = more
             continue
         if (

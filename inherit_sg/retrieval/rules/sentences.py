@@ -71,7 +71,7 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     ]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [_after_but_it_is(_without_hedged_guess(sentence)) for sentence in sentences]
-    sentences = [_without_contact_clause(sentence) for sentence in sentences]
+    sentences = [_without_contact_clause(_view_then_it(sentence)) for sentence in sentences]
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
@@ -287,6 +287,27 @@ def _names_stuff(word: str) -> bool:
     return word in lexicon().materials or word in colour_words()
 
 
+_IT = Word("it", "it", "PRON", "PRP", "nsubj")
+_IS = Word("is", "be", "AUX", "VBZ", "ROOT")
+
+
+def _view_then_it(sentence: list[Word]) -> list[Word]:
+    """ "from the doorway it's the far left cabinet": the place seen from, then the
+    thing, with no comma between them; a comma is put in, as "from the doorway, it's …"
+    reads."""
+    if len(sentence) < 5 or sentence[0].text != "from" or sentence[1].pos != "DET":
+        return sentence
+    for k in range(2, min(len(sentence) - 1, 6)):
+        word = sentence[k]
+        if word.text in ("it", "there") and sentence[k + 1].lemma == "be":
+            return [*sentence[:k], COMMA, *sentence[k:]] if k > 2 else sentence
+        if word.text == "its" and sentence[k + 1].pos == "DET" and k > 2:
+            return [*sentence[:k], COMMA, _IT, _IS, *sentence[k + 1 :]]  # "its teh …"
+        if word.pos not in ("ADJ", "NOUN", "PROPN"):
+            return sentence
+    return sentence
+
+
 def _without_contact_clause(sentence: list[Word]) -> list[Word]:
     """ "the one the kids use", "the one my dad sits in": a relative clause without "that"
     after "one", whose subject someone else is, says whose or what for, not what the
@@ -374,10 +395,12 @@ def place_after_thing(sentence: list[Word]) -> list[Word]:
     cutter", "under it the radiator, painted white", "on top of it there's a box") in the
     order the grammar reads: the thing, then its place ("a paper cutter to the right of
     it"). Only where the place points back at something said before ("it") or names a
-    thing ("above the counter on the wall is the paper towel dispenser")."""
-    if len(sentence) < 4 or sentence[0].pos != "ADP":
+    thing ("above the counter on the wall is the paper towel dispenser"). A participle of
+    position may open it ("hanging from it is an umbrella")."""
+    first = 1 if len(sentence) > 1 and _position_participle(sentence[0]) else 0
+    if len(sentence) < 4 + first or sentence[first].pos != "ADP":
         return sentence
-    k = 1
+    k = first + 1
     while k < len(sentence):
         word, before = sentence[k], sentence[k - 1]
         if word.text == "there" or (word.lemma in _INVERTED_VERBS and word.pos in ("AUX", "VERB")):
@@ -405,6 +428,14 @@ def place_after_thing(sentence: list[Word]) -> list[Word]:
     if not any(w.pos in ("NOUN", "PROPN") for w in thing):
         return sentence
     return [*thing, *place, *sentence[end:]]
+
+
+def _position_participle(word: Word) -> bool:
+    """ "hanging", "sitting", "stacked", "mounted": how a thing is placed."""
+    return word.tag in ("VBG", "VBN") and word.lemma in _POSITION_LEMMAS
+
+
+_POSITION_LEMMAS = _INVERTED_VERBS | {"mount", "stack", "prop", "tuck", "lean", "perch", "pin"}
 
 
 # Words that may open a spoken correction before its "not" ("no no not the kettle …").
