@@ -190,6 +190,19 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
             "the target, not where it goes"
         )
         return [], obj
+    if (
+        tok.lemma in _PLACING_VERBS
+        and named
+        and obj is not None
+        and not purpose
+        and not _worn(g)
+        and _imperative(g, start)
+        and next((w for w in words if w not in ("me", "us")), "") in PARTICULAR
+    ):
+        # "put my slippers by the bed", "put the mug away", "put the apple from the
+        # counter in the fridge": one particular thing to move, found first
+        g.notes.append(f"'{tok.text} {obj.noun}': the thing moved is the target")
+        return [], obj
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
     if (
         destination is not None
@@ -405,6 +418,12 @@ def _by_means(g: Grammar, start: int) -> bool:
 def _asks_where(g: Grammar, start: int) -> bool:
     """Whether the clause before token ``start`` asks "where" ("where do we keep …")."""
     return any(t.text == "where" for t in g.toks[:start])
+
+
+def _worn(g: Grammar) -> bool:
+    """Whether the cursor stands on the particle of "put … on" that means wearing ("put
+    my boots on near the back door"): "on" with no noun phrase after it."""
+    return g.text_at() == "on" and not g.np_start(1)
 
 
 def _imperative(g: Grammar, start: int) -> bool:
