@@ -101,6 +101,13 @@ _BRACKETED_DOUBT = re.compile(r"\(\s*\?+\s*\)")
 _ISH = re.compile(r"\b([A-Za-z]+?)(-?)ish\b")
 # A hyphenated participle made from a noun: "glass-topped", "heart-shaped", "l-shaped".
 _HYPHEN_PARTICIPLE = re.compile(r"\b([A-Za-z]+)-([A-Za-z]+ed)\b")
+# How far away, in steps or feet: "about three steps away", "two paces ahead" (no stairs).
+_PACES_AWAY = re.compile(
+    r"\b(?:about |around |maybe |roughly |like )?(?:\d+|a|one|two|three|four|five|six|seven|"
+    r"eight|nine|ten|a few|few|couple of|a couple of) (?:steps?|paces?|feet|foot) "
+    r"(?:away|ahead|in front|forward|behind me|back)\b",
+    re.IGNORECASE,
+)
 # "wall mounted", "ceiling-mounted": how a thing is fixed, written before its name.
 _MOUNTED = re.compile(r"\b(?:wall|ceiling)[- ](mounted|hung)\b", re.IGNORECASE)
 
@@ -173,6 +180,7 @@ def normalise(text: str) -> str:
     text = _BRACKETED_DOUBT.sub(" ", text)
     text = _ISH.sub(_without_ish, text)
     text = _MOUNTED.sub(r"\1", text)  # (the surface is no thing sought)
+    text = _PACES_AWAY.sub(" ", text)
     text = _HYPHEN_PARTICIPLE.sub(_participle_compound, text)
     text = _MENTION.sub(" ", text)
     text = _CAMEL.sub(" ", text)
