@@ -852,14 +852,17 @@ def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
 def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
     """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
     lamp by the window?", "isn't this the washing machine?", "is the stove not turned
-    off?", "isn't there a fire extinguisher in the garage") without its "not": "is it
-    not X" asks whether it is X."""
+    off?", "isn't there a fire extinguisher in the garage", "isn't the cereal in the
+    pantry?") without its "not": "is it not X" asks whether it is X."""
     if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
         return sentence
     if sentence[1].text in IT_WORDS and sentence[2].text == "not":
         return [*sentence[:2], *sentence[3:]]
     if sentence[1].text == "not" and sentence[2].text in IT_WORDS | {"there"}:
         return [sentence[0], *sentence[2:]]  # "isn't it the lamp …?", "isn't there a …"
+    if sentence[1].text == "not" and sentence[2].text == "the" and len(sentence) > 4:
+        if any(w.pos == "ADP" for w in sentence[3:]):
+            return [sentence[0], *sentence[2:]]  # "isn't the cereal in the pantry?"
     k = 1  # "is the stove not turned off?": the thing, then "not"
     while k < min(len(sentence), 6) and sentence[k].pos in ("DET", "ADJ", "NOUN", "PROPN"):
         k += 1
