@@ -860,9 +860,9 @@ def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
         return [*sentence[:2], *sentence[3:]]
     if sentence[1].text == "not" and sentence[2].text in IT_WORDS | {"there"}:
         return [sentence[0], *sentence[2:]]  # "isn't it the lamp …?", "isn't there a …"
-    if sentence[1].text == "not" and sentence[2].text == "the" and len(sentence) > 4:
-        if any(w.pos == "ADP" for w in sentence[3:]):
-            return [sentence[0], *sentence[2:]]  # "isn't the cereal in the pantry?"
+    placed = any(w.pos == "ADP" for w in sentence[3:])
+    if sentence[1].text == "not" and sentence[2].text == "the" and len(sentence) > 4 and placed:
+        return [sentence[0], *sentence[2:]]  # "isn't the cereal in the pantry?"
     k = 1  # "is the stove not turned off?": the thing, then "not"
     while k < min(len(sentence), 6) and sentence[k].pos in ("DET", "ADJ", "NOUN", "PROPN"):
         k += 1
