@@ -1120,6 +1120,24 @@ class ClauseParser(Grammar):
             ]  # fmt: skip
         return []
 
+    @staticmethod
+    def _material_of(np: NP) -> bool:
+        """Whether ``np`` names only a material and its colour ("brown leather", "black
+        metal"), placed nowhere (not "the glass behind you", "my curling iron")."""
+        from inherit_sg.vocab.colours import colour_words, shade_words
+
+        materials = lexicon().materials
+        plain = set(materials) | set(colour_words()) | shade_words()
+        if not np.words or np.words[-1] not in materials or np.places:
+            return False
+        if any(isinstance(c, RelationConstraint) for c in np.constraints):
+            return False
+        coloured = any(
+            isinstance(c, AttributeConstraint) and c.key == "colour" for c in np.constraints
+        )
+        # (a bare "glass" may be a glass: a colour or a second word says it is a material)
+        return (coloured or len(np.words) > 1) and all(w in plain for w in np.words)
+
     def _replaces_head(self, out: Clause, np: NP, neg: bool) -> bool:
         """A named object after a head that names none takes its place: "not the red one.
         go to another lamp", "go to the kitchen and find the mug", "there should be a lamp
@@ -1135,6 +1153,10 @@ class ClauseParser(Grammar):
         if self.said_of_it and head.kind == ONE and not head.labels:
             # "… It is yellow plastic.", "It is tall and thin, the lampshade is white":
             # the target described, not a new one named
+            head.constraints += self.as_description(np)
+            return True
+        if head.kind == ONE and not head.labels and self._material_of(np):
+            # "the one with its back to the windows, brown leather": what it is made of
             head.constraints += self.as_description(np)
             return True
         if head.kind in (ONE, ANAPHOR, VAGUE) and not head.labels:
