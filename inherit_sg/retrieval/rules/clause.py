@@ -40,8 +40,9 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.tagger import Tok
+from inherit_sg.retrieval.rules.tokens import colour_or_material
 from inherit_sg.vocab import objects as object_vocab
-from inherit_sg.vocab.colours import colour_words
+from inherit_sg.vocab.colours import colour_words, shade_words
 from inherit_sg.vocab.lexicon import lexicon
 
 _SKIP = (
@@ -1124,11 +1125,7 @@ class ClauseParser(Grammar):
     def _material_of(np: NP) -> bool:
         """Whether ``np`` names only a material and its colour ("brown leather", "black
         metal"), placed nowhere (not "the glass behind you", "my curling iron")."""
-        from inherit_sg.vocab.colours import colour_words, shade_words
-
-        materials = lexicon().materials
-        plain = set(materials) | set(colour_words()) | shade_words()
-        if not np.words or np.words[-1] not in materials or np.places:
+        if not np.words or np.words[-1] not in lexicon().materials or np.places:
             return False
         if any(isinstance(c, RelationConstraint) for c in np.constraints):
             return False
@@ -1136,7 +1133,8 @@ class ClauseParser(Grammar):
             isinstance(c, AttributeConstraint) and c.key == "colour" for c in np.constraints
         )
         # (a bare "glass" may be a glass: a colour or a second word says it is a material)
-        return (coloured or len(np.words) > 1) and all(w in plain for w in np.words)
+        plain = all(colour_or_material(w) or w in shade_words() for w in np.words)
+        return (coloured or len(np.words) > 1) and plain
 
     def _replaces_head(self, out: Clause, np: NP, neg: bool) -> bool:
         """A named object after a head that names none takes its place: "not the red one.

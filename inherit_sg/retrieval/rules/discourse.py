@@ -214,10 +214,11 @@ def split_scene(sentence: list[Word]) -> list[list[Word]]:
 
 def _sets_scene(sentence: list[Word]) -> str | None:
     """How a first sentence sets the scene: "there" ("there is a desk …", "you see the
-    big window?", "see the washing machine?", "do you see the microwave?"), "fragment" (a thing and its place, no verb: "sink under the mirror",
-    or a thing that stands somewhere: "a couch sits under the window"), "statement" ("the
-    bed is in the middle of the room"), or None for a sentence that says which thing is
-    meant ("this is a chair", "find the lamp", "the chair is brown")."""
+    big window?", "see the washing machine?", "do you see the microwave?"), "fragment" (a
+    thing and its place, no verb: "sink under the mirror", or a thing that stands
+    somewhere: "a couch sits under the window"), "statement" ("the bed is in the middle
+    of the room"), or None for a sentence that says which thing is meant ("this is a
+    chair", "find the lamp", "the chair is brown")."""
     words = [w for w in sentence if w.text != ","]
     if len(words) < 2 or words[0].text in _IDENTIFYING:
         return None

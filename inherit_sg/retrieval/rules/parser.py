@@ -361,7 +361,8 @@ def parse_uncached(text: str) -> ParsedQuery:
                 more.excluded_labels += clause.excluded_labels
             clause = more
             continue
-        if not correcting and picks_out(sentence) and _one_of_the_named(clause, more):
+        chosen = picks_out(sentence)
+        if not correcting and chosen and _one_of_the_named(clause, more):
             # "… a glass cup with two toothbrushes in it, and a tube of toothpaste
             # beside it. The target is the cup."
             assert clause.head is not None and more.head is not None
@@ -370,8 +371,7 @@ def parse_uncached(text: str) -> ParsedQuery:
             clause.head.words = list(more.head.words)
             clause.head.plural = more.head.plural
             continue
-        chosen = picks_out(sentence) or n == pointed
-        if not correcting and chosen and _another_thing(clause, more):
+        if not correcting and (chosen or n == pointed) and _another_thing(clause, more):
             # "find the copier first. the recycling bin on its left side is the one"
             assert more.head is not None
             notes.append(f"{more.head.noun!r} is said to be the one meant")

@@ -28,7 +28,7 @@ from inherit_sg.retrieval.rules.rewording import (
     without_run_out,
     without_sign_negation,
 )
-from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.retrieval.rules.tokens import COMMA, IS, IT, Word, colour_or_material
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.objects import canonical_label
 from inherit_sg.vocab.rooms import room_type
@@ -273,22 +273,11 @@ def _without_hedged_guess(sentence: list[Word]) -> list[Word]:
         end = next((j for j, t in enumerate(texts) if t == ","), len(texts))
         guess = sentence[k + 1 + len(opening) : k + 1 + end]
         if guess and all(
-            w.pos in ("ADJ", "ADV", "CCONJ") or w.text in _UNSURE or _names_stuff(w.text)
+            w.pos in ("ADJ", "ADV", "CCONJ") or w.text in _UNSURE or colour_or_material(w.text)
             for w in guess
         ):
             return sentence[:k] + sentence[k + 1 + end :]
     return sentence
-
-
-def _names_stuff(word: str) -> bool:
-    """Whether ``word`` names a material or a colour (not a thing)."""
-    from inherit_sg.vocab.colours import colour_words
-
-    return word in lexicon().materials or word in colour_words()
-
-
-_IT = Word("it", "it", "PRON", "PRP", "nsubj")
-_IS = Word("is", "be", "AUX", "VBZ", "ROOT")
 
 
 def _view_then_it(sentence: list[Word]) -> list[Word]:
@@ -302,7 +291,7 @@ def _view_then_it(sentence: list[Word]) -> list[Word]:
         if word.text in ("it", "there") and sentence[k + 1].lemma == "be":
             return [*sentence[:k], COMMA, *sentence[k:]] if k > 2 else sentence
         if word.text == "its" and sentence[k + 1].pos == "DET" and k > 2:
-            return [*sentence[:k], COMMA, _IT, _IS, *sentence[k + 1 :]]  # "its teh …"
+            return [*sentence[:k], COMMA, IT, IS, *sentence[k + 1 :]]  # "its teh …"
         if word.pos not in ("ADJ", "NOUN", "PROPN"):
             return sentence
     return sentence

@@ -89,10 +89,13 @@ class Word:
 
 
 COMMA = Word(",", ",", "PUNCT", ",")
-# Words the rewriting passes insert ("there is a coat rack", "the tub in the bathroom").
+# Words the rewriting passes insert ("there is a coat rack", "the tub in the bathroom",
+# "its the cabinet" → "it is the cabinet").
 THE = Word("the", "the", "DET", "DT", "det")
 A = Word("a", "a", "DET", "DT", "det")
 IN = Word("in", "in", "ADP", "IN", "prep")
+IT = Word("it", "it", "PRON", "PRP", "nsubj")
+IS = Word("is", "be", "AUX", "VBZ", "ROOT")
 
 
 # A hedge in brackets after a word: "the leather(?) ottoman".
@@ -112,8 +115,8 @@ _PACES_AWAY = re.compile(
 _MOUNTED = re.compile(r"\b(?:wall|ceiling)[- ](mounted|hung)\b", re.IGNORECASE)
 
 
-def _attribute_word(word: str) -> bool:
-    """Whether ``word`` names a colour or a material ("brown", "wooden")."""
+def colour_or_material(word: str) -> bool:
+    """Whether ``word`` names a colour or a material ("brown", "wooden"), not a thing."""
     from inherit_sg.vocab.colours import colour_words
     from inherit_sg.vocab.lexicon import lexicon
 
@@ -127,7 +130,7 @@ def _without_ish(match: re.Match[str]) -> str:
     stem, hyphen = match.group(1), match.group(2)
     low = stem.lower()
     for guess in (low, low[:-1] if len(low) > 2 and low[-1] == low[-2] else "", low + "e"):
-        if guess and _attribute_word(guess):
+        if guess and colour_or_material(guess):
             return guess
     return stem if hyphen else match.group(0)
 
@@ -140,7 +143,7 @@ def _participle_compound(match: re.Match[str]) -> str:
     ("l-shaped") stay."""
     first, participle = match.group(1), match.group(2)
     low = first.lower()
-    if _attribute_word(low):
+    if colour_or_material(low):
         return first
     noun = known_lemma(low, "noun") and not known_lemma(low, "adj")
     if len(low) > 1 and low not in _NUMBER_WORDS and noun:
@@ -407,10 +410,6 @@ def _shades_named_by_things(words: list[Word]) -> list[Word]:
     return out
 
 
-_IT = Word("it", "it", "PRON", "PRP", "nsubj")
-_IS = Word("is", "be", "AUX", "VBZ", "ROOT")
-
-
 def _its_is(words: list[Word]) -> list[Word]:
     """ "its" written for "it's" before what describes it ("its tall and stainless
     steel", "its pretty short") or before "not": "it is". Before a noun it stays a
@@ -426,7 +425,7 @@ def _its_is(words: list[Word]) -> list[Word]:
             out.append(word)
             continue
         if i + 1 < len(words) and words[i + 1].text == "not":
-            out += [_IT, _IS]  # "its not hard", "its not the red one"
+            out += [IT, IS]  # "its not hard", "its not the red one"
             continue
         j = i + 1
         while j < len(words) and words[j].pos == "ADV":
@@ -435,7 +434,7 @@ def _its_is(words: list[Word]) -> list[Word]:
         while j < len(words) and (words[j].pos in ("ADJ", "CCONJ", "ADV") or words[j] is COMMA):
             j += 1
         if described and (j == len(words) or words[j].pos != "NOUN" or words[j].text in materials):
-            out += [_IT, _IS]
+            out += [IT, IS]
         else:
             out.append(word)
     return out
