@@ -56,6 +56,11 @@ def engine(map_dir: Path) -> Iterator[QueryEngine]:
             "obj:c3",
         ),
         ("which room has the bed?", "obj:bd1"),
+        # requests written by software rather than people
+        ("label: mug; on: coffee table", "obj:m3"),
+        ("object=chair; exclude_room=kitchen", "obj:c3"),
+        ("find_object(name='sink', under='mirror')", "obj:sk1"),
+        ("Step 2: go to the couch", "obj:s1"),
     ],
 )
 def test_known_answers(engine: QueryEngine, text: str, expected: str) -> None:

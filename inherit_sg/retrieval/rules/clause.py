@@ -131,6 +131,10 @@ class Clause:
     fetched: bool = False
 
 
+# Possessive pronouns that say whose a thing is ("not mine", "not hers").
+_OWNER_PRONOUNS = frozenset({"mine", "hers", "his", "yours", "ours", "theirs"})
+
+
 def _as_placements(head: NP, cons: list[Constraint]) -> list[Constraint]:
     """A contrasting "one in the middle" after a head placed in its room ("the table in the
     corner, not the one in the centre") means the middle of the room, not of a row."""
@@ -354,6 +358,18 @@ class ClauseParser(Grammar):
                 self.advance()  # "any throw but the one on the couch"
                 self.negate()
                 self._after_except = True
+            elif tok.has("neg") and out.head is not None and (owner := self._owner_at(1)):
+                # "the cup I drank from, not my wife's", "my tablet, not hers": whose it is
+                # not (the map may not know whose things are; the trace says it was asked)
+                self.i += owner[0] + 1
+                self._neg = False
+                out.head.constraints.append(
+                    AttributeConstraint(
+                        key="other", value=owner[1], negated=True,
+                        weight=self.weight("attribute"), text=f"not {owner[1]}",
+                    )
+                )  # fmt: skip
+                self.notes.append(f"'not {owner[1]}': whose it is not")
             elif tok.has("neg", "except"):
                 self.advance()
                 if not self._mental_after():
@@ -389,6 +405,25 @@ class ClauseParser(Grammar):
                     self.notes.append(f"skipped {tok.text!r}")
                 self.advance()
         return out
+
+    def _owner_at(self, k: int) -> tuple[int, str] | None:
+        """The owner named at token ``k`` ahead and how many tokens it takes, when the
+        phrase ends there: "my wife('s)", "my daughters", "mine", "hers"."""
+        first = self.peek(k)
+        if first is None:
+            return None
+        if first.text in _OWNER_PRONOUNS:
+            n, owner = 1, first.text
+        else:
+            n = 1 if first.tag == "PRP$" else 0
+            person = self.peek(k + n)
+            if person is None or not person.has("seeker") or person.tag not in ("NN", "NNS"):
+                return None
+            n, owner = n + 1, f"{person.text.rstrip('s') if person.tag == 'NNS' else person.text}'s"
+        if self.at("one", k=k + n):
+            n += 1
+        after = self.peek(k + n)
+        return (n, owner) if after is None or after.has("comma", "and", "but") else None
 
     def _kept_out(
         self, made: list[Constraint], candidate: NP | None
@@ -604,7 +639,7 @@ class ClauseParser(Grammar):
                 np = self.parse_np(landmark=True)
                 if np is not None and np.kind == OBJECT and np.labels:
                     mark = np
-                if np is not None:
+                if np is not None or self.peek() is None:
                     continue
             self.advance()
         if mark is not None:
@@ -1007,6 +1042,11 @@ class ClauseParser(Grammar):
             return False
         if before.has("comma") and verb.tag != "VB":
             return False  # "we're out of toilet paper, check the cabinet …": a command
+        if head.kind == OBJECT and self._part_of_head(head, np, j):
+            # "go to the high chair … and wipe the tray", "locate the filing cabinet and
+            # open its top drawer": what is done to a part of the thing found first
+            self.notes.append(f"{np.noun!r} is a part of {head.noun!r}, still the target")
+            return True
         if head.kind == ROOM:  # "go to the TV room and turn on the TV": the TV, in that room
             out.places.append(self._place(head, False))
             self.notes.append(f"{np.noun!r} is the target; {head.noun!r} is where")
@@ -1014,6 +1054,13 @@ class ClauseParser(Grammar):
             return True
         self._sought_near_head(out, np, "is the target")
         return True
+
+    def _part_of_head(self, head: NP, np: NP, j: int) -> bool:
+        """Whether ``np`` (a command's object, its verb at token ``j``) is a part of
+        ``head``: "its" before it, or a part word of the head's kind."""
+        if any(t.text == "its" for t in self.toks[j + 1 : self.i]):
+            return True
+        return any(object_vocab.is_part(w, label) for w in np.words[-1:] for label in head.labels)
 
     def _verb_of_head(self, out: Clause, np: NP, neg: bool, j: int) -> bool:
         """ "The blinds are white and cover the window": in a description (no command

@@ -513,7 +513,10 @@ def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str])
     )
     rest = [c for c in head.constraints if c is not held[0] and c.kind != "label"]
     room = [Grammar.room_place(head)] if head.labels else []
-    thing.places = [*room, *rest, *head.places]
+    places = [c for c in rest if c.kind in ("room", "area", "floor")]
+    # what else the room's phrase said ("… in on monday") stays with the thing
+    thing.constraints += [c for c in rest if c.kind not in ("room", "area", "floor")]
+    thing.places = [*room, *places, *head.places]
     notes.append(f"'{sentence[0].text} {head.noun} …': found by finding {target.noun!r}")
     clause.head = thing
 

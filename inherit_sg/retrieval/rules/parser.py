@@ -63,6 +63,7 @@ from inherit_sg.retrieval.rules.sentences import (
     prepare,
     without_repeating,
 )
+from inherit_sg.retrieval.rules.structured import plain_request
 from inherit_sg.retrieval.rules.tagger import tag
 from inherit_sg.retrieval.rules.tokens import COMMA, Word, analyse_text, check_query_text
 from inherit_sg.vocab.lexicon import lexicon
@@ -279,7 +280,8 @@ def _asks_only_for_help(clause: Clause) -> bool:
 def parse_uncached(text: str) -> ParsedQuery:
     """Parse ``text`` without the result cache (for benchmarks)."""
     text = check_query_text(text)
-    analysed, fixes = analyse_text(text)
+    plain, read_as = plain_request(text)
+    analysed, fixes = analyse_text(plain)
     problem, sentences = split_problem(route_goal(called_off(analysed)))
     unknown_problem = open_problem(analysed) if problem is None else None
     words = _flat(sentences)
@@ -288,7 +290,8 @@ def parse_uncached(text: str) -> ParsedQuery:
         return ParsedQuery(text=text, no_target_reason=reason, notes=("frame: global question",))
     if len(sentences) > MAX_SENTENCES:
         sentences = sentences[:MAX_SENTENCES]  # a request is a few sentences; the rest is talk
-    notes: list[str] = [f"spelling: {wrong!r} read as {right!r}" for wrong, right in fixes]
+    notes: list[str] = [read_as] if read_as else []
+    notes += [f"spelling: {wrong!r} read as {right!r}" for wrong, right in fixes]
     refine = False
     if sentences:
         refine, first = refine_frame(sentences[0])

@@ -111,6 +111,20 @@ _PACES_AWAY = re.compile(
     r"(?:away|ahead|in front|forward|behind me|back)\b",
     re.IGNORECASE,
 )
+# A day of the week, with its preposition: when something happened, not where ("the boots
+# I left in the mudroom on monday", "since Tuesday", "Friday night").
+_WEEKDAY = re.compile(
+    r"\b(?:mon|tues|wednes|thurs|fri|satur|sun)day's\b"  # "after Friday's rehearsal"
+    r"|(?:\b(?:on|since|from|by|until|till|last|this|next|every|before|after)\s+)?"
+    r"\b(?:mon|tues|wednes|thurs|fri|satur|sun)days?\b(?!')"
+    r"(?:\s+(?:morning|afternoon|evening|night))?",
+    re.IGNORECASE,
+)
+# A verb and particle joined before a noun: "walk-in cooler", "built-in shelves",
+# "pull-out couch".
+_PARTICLE_COMPOUND = re.compile(
+    r"\b([A-Za-z]+)-(in|out|up|down|on|off|over|through|away)\s+([A-Za-z]+)", re.IGNORECASE
+)
 # "wall mounted", "ceiling-mounted": how a thing is fixed, written before its name.
 _MOUNTED = re.compile(r"\b(?:wall|ceiling)[- ](mounted|hung)\b", re.IGNORECASE)
 
@@ -133,6 +147,23 @@ def _without_ish(match: re.Match[str]) -> str:
         if guess and colour_or_material(guess):
             return guess
     return stem if hyphen else match.group(0)
+
+
+def _particle_compound(match: re.Match[str]) -> str:
+    """ "walk-in cooler door" → "cooler door", "built-in shelves" → "shelves": a verb and
+    particle before a noun say how the thing is built, which the parser would otherwise
+    read as a verb or as the thing itself; a name the vocabulary knows whole ("pull-out
+    couch", "walk-in shower") stays."""
+    from inherit_sg.vocab.objects import canonical_label, labels_for
+    from inherit_sg.vocab.rooms import room_type
+
+    stem, particle, noun = match.groups()
+    whole = f"{stem} {particle} {noun}"
+    if canonical_label(whole.lower()) is not None or room_type(whole.lower()) is not None:
+        return whole  # "pull-out couch", "walk-in closet"
+    if known_lemma(noun.lower(), "noun") or labels_for(noun.lower()):
+        return noun
+    return match.group(0)
 
 
 def _participle_compound(match: re.Match[str]) -> str:
@@ -184,7 +215,9 @@ def normalise(text: str) -> str:
     text = _ISH.sub(_without_ish, text)
     text = _MOUNTED.sub(r"\1", text)  # (the surface is no thing sought)
     text = _PACES_AWAY.sub(" ", text)
+    text = _WEEKDAY.sub(" ", text)
     text = _HYPHEN_PARTICIPLE.sub(_participle_compound, text)
+    text = _PARTICLE_COMPOUND.sub(_particle_compound, text)
     text = _MENTION.sub(" ", text)
     text = _CAMEL.sub(" ", text)
     text = _SPACED_DASH.sub(" \u2014", text)

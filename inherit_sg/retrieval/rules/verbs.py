@@ -232,7 +232,10 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         and obj is not None
         and obj.kind == OBJECT
         and obj.known
-        and not has_own_sense(verb, words[:own], lemmas[:own])
+        and (
+            not has_own_sense(verb, words[:own], lemmas[:own])
+            or _acts_on_particular(g, start, obj, words, purpose or by_means)
+        )
     ):
         # "find a laptop in the work area": a named thing, not a purpose ("laptop" → work);
         # but "take a shower" is the verb's own sense (wash)
@@ -274,6 +277,20 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     )
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
+
+
+def _acts_on_particular(g: Grammar, start: int, obj: NP, words: list[str], aside: bool) -> bool:
+    """Whether a command does something to one particular named thing ("rinse the dirty
+    plate in the sink", "chill the lettuce in the fridge", "heat a cup of coffee in the
+    microwave"): the thing is sought, not what the verb is done with. A light verb ("do
+    the dishes", "take a shower") keeps its own sense."""
+    if aside or not obj.labels or g.toks[start].lemma in lexicon().light_verbs or _worn(g):
+        return False
+    if not _imperative(g, start):
+        return False
+    opened = next((w for w in words if w not in ("me", "us")), "")
+    placed = any(isinstance(c, RelationConstraint) for c in obj.constraints)
+    return opened in PARTICULAR or placed
 
 
 def _fetches_particular(tok: Tok, obj: NP | None, words: list[str]) -> bool:
