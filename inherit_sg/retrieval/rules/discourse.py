@@ -31,7 +31,7 @@ from inherit_sg.retrieval.rules.rewording import ends_with_thing
 from inherit_sg.retrieval.rules.sentences import FINITE, IT_WORDS, QUESTION_OPENERS
 from inherit_sg.retrieval.rules.tokens import COMMA, Word
 from inherit_sg.vocab.lexicon import lexicon
-from inherit_sg.vocab.objects import canonical_label, is_kind_of
+from inherit_sg.vocab.objects import canonical_label, is_kind_of, labels_for
 from inherit_sg.vocab.rooms import room_type
 
 # Dependencies of a clause's own verb (a run-on's first verb hangs off the second: ccomp)
@@ -363,7 +363,9 @@ def picks_out(sentence: list[Word]) -> bool:
         if sentence[j].lemma == "be" and texts[j + 1] == "what" and texts[j + 2] in _CHOOSERS:
             k = j + 4 if texts[j + 3 : j + 4] in (["am"], ["are"]) else j + 3
             if k < len(sentence) and sentence[k].lemma in _PICKING:
-                return ends_with_thing(sentence[:j])
+                # the subject's thing, before any place it has ("the bench in front of it")
+                cut = next((m for m in range(1, j) if sentence[m].pos == "ADP"), j)
+                return ends_with_thing(sentence[:cut])
     for i in range(1, len(sentence) - 1):  # "the cabinet (that) we want …"
         j = i + 1 if texts[i] in ("that", "which") else i
         if j + 1 >= len(sentence) or texts[j] not in _CHOOSERS:
@@ -449,8 +451,8 @@ def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
             continue  # "…, and the one I mean is the one with …": says more of the same
         if k < len(sentence) and sentence[k].text == "not":
             continue  # "the remote, not the tv one, the one for the AC": read whole
-        if k < len(sentence) and picks_out(sentence[k:]):
-            return [sentence[:j], sentence[k:]]
+        if k < len(sentence) and (picks_out(sentence[k:]) or _closing_pointer(sentence[k:])):
+            return [sentence[:j], sentence[k:]]  # "… a fruit bowl, that's what I mean"
     return [sentence]
 
 
@@ -576,13 +578,104 @@ def count_superlative(clause: Clause, words: list[Word], notes: list[str]) -> No
 _POINTING_ERRANDS = frozenset({"go", "find", "get", "grab", "bring", "fetch", "pick", "choose"})
 
 
+# What follows "that's" in a closing sentence that points at the thing named before it.
+_POINTING_CLOSERS = (
+    ["the", "one"], ["it"], ["what", "i", "mean"], ["what", "i", "want"], ["what", "i", "need"],
+    ["what", "i", "am", "after"], ["what", "i", "am", "looking", "for"], ["the", "one", "i", "mean"],
+    ["the", "one", "i", "want"], ["what", "we", "need"], ["what", "we", "want"],
+)  # fmt: skip
+
+
+def _closing_pointer(sentence: list[Word]) -> bool:
+    """ "that's the one", "that's what I mean", "this is what I'm after"."""
+    texts = [w.text for w in sentence if w.text not in (",", "please", "just", ".", "!")]
+    return texts[:2] in (["that", "is"], ["this", "is"]) and texts[2:] in _POINTING_CLOSERS
+
+
 def points_back(sentence: list[Word]) -> bool:
     """Whether ``sentence`` is only an errand at "that" / "it" / "this one" ("Go to that.",
     "Find that.", "grab that one"): the thing meant is the last one named before it."""
-    texts = [w.text for w in sentence if w.text not in (",", "please", "just")]
+    texts = [w.text for w in sentence if w.text not in (",", "please", "just", ".", "!")]
+    if texts[:2] in (["that", "is"], ["this", "is"]):
+        return _closing_pointer(sentence)
     if not texts or sentence[0].lemma not in _POINTING_ERRANDS or len(texts) > 4:
         return False
     rest = texts[1:]
     if rest[:1] in (["to"], ["me"]):
         rest = rest[1:]
     return rest in (["that"], ["this"], ["it"], ["that", "one"], ["this", "one"])
+
+
+# Verbs that open a sentence picking one thing ("pick the one nearest the fridge").
+_PICK_VERBS = frozenset({"pick", "choose", "select", "take", "grab", "get", "find", "want", "need"})
+
+
+def several_kinds(sentences: list[list[Word]]) -> list[tuple[tuple[str, ...], str]]:
+    """The kinds ``sentences`` name as several ("there are baskets", "two nightstands",
+    "three glass pendant lights", "lots of plants"), in order: their labels and noun."""
+    out: list[tuple[tuple[str, ...], str]] = []
+    for sentence in sentences:
+        for k, word in enumerate(sentence):
+            if word.pos != "NOUN" or (k + 1 < len(sentence) and sentence[k + 1].pos == "NOUN"):
+                continue  # only the last noun of a phrase ("pendant lights", not "pendant")
+            before = sentence[max(0, k - 4) : k]
+            counted = any(w.tag == "CD" and w.text not in ("one", "1") for w in before)
+            if word.tag != "NNS" and not counted:
+                continue
+            named = [w.lemma for w in sentence[max(0, k - 1) : k + 1] if w.pos == "NOUN"]
+            for phrase in (" ".join(named), word.lemma):
+                labels = labels_for(phrase)
+                if labels:
+                    out.append((labels, phrase))
+                    break
+    return out
+
+
+def _picking_sentence(sentence: list[Word]) -> bool:
+    """Whether a sentence only says which one is meant: a bare phrase ("The basket on
+    the far left."), "it's the …", or a verb of picking ("Pick the one nearest the
+    fridge.", "I need the biggest one")."""
+    texts = [w.text for w in sentence if w.pos != "PUNCT"]
+    if not texts:
+        return False
+    if texts[:2] in (["it", "is"], ["that", "is"], ["this", "is"]):
+        return True
+    if sentence[0].lemma in _PICK_VERBS and sentence[0].tag == "VB":
+        return True
+    if texts[0] in ("i", "we") and len(sentence) > 1 and sentence[1].lemma in _PICK_VERBS:
+        return True
+    return not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in sentence)
+
+
+def one_of_several(
+    kinds: list[tuple[tuple[str, ...], str]], clause: Clause, more: Clause, later: list[Word]
+) -> bool:
+    """Whether a later sentence picks one of the several things of a kind named before:
+    "The mudroom has a row of hooks and a bench. Under the bench there are baskets. The
+    basket on the far left.", "… a queen bed and two nightstands. Its the nightstand
+    closer to the window.", "… three glass pendant lights. Pick the one nearest the
+    fridge.", "The sunroom has lots of plants. I need the biggest one". A bare "one"
+    takes the kind named last; ``more`` is made to carry it."""
+    head, other = clause.head, more.head
+    if head is None or other is None or more.head_negated or not kinds:
+        return False
+    if not _picking_sentence(later):
+        return False
+    if not any(w.pos == "NOUN" or w.text == "one" for w in later):
+        return False  # "It is round and made of glass": said of the target
+    head_kind = head.kind == OBJECT and any(set(head.labels) & set(k) for k, _ in kinds)
+    if other.kind == OBJECT and other.labels and not other.plural:
+        if head.kind == OBJECT and same_thing(head, other):
+            return False
+        return any(set(other.labels) & set(k) for k, _ in kinds)
+    if other.kind == ONE and not other.labels and head.kind == ROOM and not head_kind:
+        # only after a room that sets the scene; after a thing, "the one" is that thing
+        labels, noun = kinds[-1]
+        other.kind, other.labels, other.words, other.known = (
+            OBJECT,
+            list(labels),
+            noun.split(),
+            True,
+        )
+        return True
+    return False

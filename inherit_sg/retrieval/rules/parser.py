@@ -27,11 +27,13 @@ from inherit_sg.retrieval.rules.discourse import (
     count_superlative,
     description_after_it,
     hand_over,
+    one_of_several,
     picks_out,
     point_it_at_view,
     points_back,
     same_thing,
     scene_then_target,
+    several_kinds,
     split_at_pick,
     split_scene,
     statement_then_request,
@@ -355,6 +357,16 @@ def parse_uncached(text: str) -> ParsedQuery:
             words = _flat(sentences[n:])  # what the speaker does says no need
             continue
         situation = False
+        kinds = several_kinds(sentences[:n])
+        if not correcting and one_of_several(kinds, clause, more, sentence):
+            # "… there are baskets. The basket on the far left."
+            assert clause.head is not None and more.head is not None
+            notes.append(f"{more.head.noun!r}: one of the several named before")
+            hand_over(clause, more)
+            if clause.head.kind == ROOM:  # "The sunroom has lots of plants. I need …"
+                more.places.append(Grammar.room_place(clause.head))
+            clause = more
+            continue
         if not correcting and statement_then_request(clause, sentences[0], more, sentence):
             # "The wifi is down. Can you check the router in the hall closet?"
             assert more.head is not None

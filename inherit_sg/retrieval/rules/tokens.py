@@ -149,6 +149,15 @@ def _without_ish(match: re.Match[str]) -> str:
     return stem if hyphen else match.group(0)
 
 
+def _without_weekday(match: re.Match[str]) -> str:
+    """The text without a day of the week, unless the day tells one thing from another
+    ("not the one from Tuesday")."""
+    before = match.string[: match.start()].lower().rstrip()
+    if before.endswith((" one", " ones")) or before.endswith(("the one from", "the ones from")):
+        return match.group(0)
+    return " "
+
+
 def _particle_compound(match: re.Match[str]) -> str:
     """ "walk-in cooler door" → "cooler door", "built-in shelves" → "shelves": a verb and
     particle before a noun say how the thing is built, which the parser would otherwise
@@ -215,7 +224,7 @@ def normalise(text: str) -> str:
     text = _ISH.sub(_without_ish, text)
     text = _MOUNTED.sub(r"\1", text)  # (the surface is no thing sought)
     text = _PACES_AWAY.sub(" ", text)
-    text = _WEEKDAY.sub(" ", text)
+    text = _WEEKDAY.sub(_without_weekday, text)
     text = _HYPHEN_PARTICIPLE.sub(_participle_compound, text)
     text = _PARTICLE_COMPOUND.sub(_particle_compound, text)
     text = _MENTION.sub(" ", text)
