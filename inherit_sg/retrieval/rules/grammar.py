@@ -14,6 +14,7 @@ taken by the first constraint built after it, so it scopes exactly that constrai
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import replace
 
 from inherit_sg.nlp import lemma_phrase
@@ -84,6 +85,12 @@ def _leads_somewhere(np: NP) -> bool:
     )
 
 
+# Tags of the words that say a state ("still switched on", "dripping", "full").
+_STATE_TAGS = frozenset({"JJ", "VBN", "VBG", "RB", "RP"})
+# Verbs that open a state to check ("check the tap isn't dripping").
+_CHECKING = frozenset({"check", "ensure", "verify", "confirm", "double-check"})
+# Adverbs that put a thing right by a room it is "outside" of ("just outside the kitchen").
+_RIGHT_BY = frozenset({"just", "right", "directly", "immediately", "straight"})
 # Words that end a posture a thing can be in ("standing up", "lying down").
 _POSTURE_ENDS = frozenset({"up", "down", "upright"})
 
@@ -561,6 +568,13 @@ class Grammar(Cursor):
                 continue
             elif tok.has("seeker", "modal") and not self.np_start():
                 pass
+            elif tok.has("neg") and self.state_to_check():
+                # "check the bathroom tap isn't dripping", "make sure the kettle isn't
+                # still switched on": the state to check, not a thing ruled out
+                self.notes.append(f"'{tok.text}' in a state to check: nothing ruled out")
+                while (word := self.peek(1)) is not None and word.tag in _STATE_TAGS:
+                    self.advance()  # the state itself says nothing of which thing it is
+                after_be = True
             elif tok.has("neg"):
                 self.negate()
                 after_be = True  # "the chair not pushed in" = "… that is not pushed in"
@@ -1169,9 +1183,39 @@ class Grammar(Cursor):
             return lm
         return thing  # "at the far end of it": the thing said before
 
+    def state_to_check(self) -> bool:
+        """Whether the negation at the cursor says a state to check: right after "is" in
+        a clause that a verb of checking opens ("check (that) the tap isn't dripping",
+        "make sure the oven is not on"), not in a relative clause ("the drawer that
+        isn't locked")."""
+        if self.i < 2 or not self.toks[self.i - 1].has("be"):
+            return False
+        if self.toks[self.i - 2].has("rel") or self.toks[self.i - 2].text in ("that", "which"):
+            return False
+        texts = [t.text for t in self.toks[: self.i - 1]]
+        if "which" in texts or "what" in texts:
+            return False  # "check which window isn't closed": the one that is not
+        lemmas = {t.lemma for t in self.toks[: self.i - 1]}
+        sure = any(
+            a in ("make", "making", "makes") and b == "sure" for a, b in itertools.pairwise(texts)
+        )
+        return sure or bool(lemmas & _CHECKING)
+
+    def _just_outside(self, at: int, lm: NP) -> bool:
+        """Whether "outside" (token ``at``) places a thing beside a room rather than out
+        of it: "just / right outside", after the room the thing is in ("in the hallway
+        outside the lab"), or outside a numbered room ("outside room 12")."""
+        before = self.toks[max(0, at - 4) : at]
+        if before and before[-1].text in _RIGHT_BY:
+            return True
+        if any(t.has("room") for t in before):
+            return True
+        return any(w.isdigit() for w in lm.words)
+
     def parse_pp(self, predicate: str | None = None) -> list[Constraint] | None:
         """A prepositional phrase → constraints (empty for deictic places); None when
         the preposition has no object. ``predicate`` overrides the preposition's own."""
+        at = self.i
         tok = self.advance()
         neg = self.take_neg()
         if predicate is None:
@@ -1192,8 +1236,15 @@ class Grammar(Cursor):
         if lm is None:
             return None
         lm = self._side_of(lm)
-        if predicate == "inside" and tok.text in lexicon().outside_prepositions and _opening(lm):
-            predicate, neg = "near", not neg  # "the patio chair outside the sliding door"
+        if predicate == "inside" and tok.text in lexicon().outside_prepositions:
+            if lm.kind == ROOM and self._just_outside(at, lm):
+                # "just outside the kitchen", "in the hallway outside the lab", "outside
+                # room 12": beside the room, in another one; neither in it nor ruled out
+                self.notes.append(f"'{tok.text} {lm.noun}': beside that room, not out of it")
+                return []
+            if _opening(lm) or self._just_outside(at, lm):
+                # "the patio chair outside the sliding door", "… outside the lab"
+                predicate, neg = "near", not neg
         text = f"{tok.text} {lm.noun or lm.kind}"
         places = lm.places
         if lm.kind == FLOOR and lm.floor is not None:

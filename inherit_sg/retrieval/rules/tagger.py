@@ -541,6 +541,8 @@ def tag(words: list[Word]) -> list[Tok]:
                 lemma=last.lemma,
                 tag=tag_,
             )
+            if n == 1 and i == 0 and tok.has("other") and len(words) > 1 and words[1].text == ",":
+                tok.tags = {"filler": words[i].text}  # "next, grab the potato": then
             if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
                 del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
                 tok.tags["filler"] = words[i].text
