@@ -131,6 +131,10 @@ class Clause:
     fetched: bool = False
 
 
+# Verbs of a second command that say where to look ("remote again, check the couch").
+_LOOKING = frozenset({"check", "try", "look", "search"})
+# General kinds one looks on or in for a thing.
+_FURNITURE_WORDS = ("furniture", "storage", "container", "surface")
 # Possessive pronouns that say whose a thing is ("not mine", "not hers").
 _OWNER_PRONOUNS = frozenset({"mine", "hers", "his", "yours", "ours", "theirs"})
 
@@ -466,12 +470,17 @@ class ClauseParser(Grammar):
         tok = self.peek()
         assert tok is not None
         k = 1
+        described = tok.has("det") and self.text_at(1) in ("description", "text")
         if tok.has("det") and self.at("generic", k=1) and self.text_at(1) in lexicon().meta_nouns:
             k = 2  # "the object is a …", "the item is …"
+        elif described and self.text_at(3) in ("for", "about", "of"):
+            k = 2  # "this description is for the basket"
         elif tok.text not in _FRAME_SUBJECTS:
             return False
         if not self.at("be", k=k):
             return False
+        if described and k == 2:
+            k += 1  # the preposition after "is"
         j = k + 1
         while self.at("adv", "emph", "hedge", "neg", k=j) and not self.at("prep", k=j):
             j += 1
@@ -630,9 +639,18 @@ class ClauseParser(Grammar):
         """ "before I head out the front door", "after we get to the kitchen": when the
         speaker does something is context, not the target; a thing it names is where the
         target likely is (a soft "near")."""
-        if self.text_at() not in _TIME_WORDS or self.text_at(1) not in _PEOPLE:
+        if self.text_at() not in _TIME_WORDS:
             return False
-        self.i += 2
+        if self.text_at(1) in _PEOPLE:
+            self.i += 2
+        elif (
+            self.text_at(1) in ("the", "my", "our")
+            and self.at("seeker", k=2)
+            and self.at("be", "overb", k=3)
+        ):
+            self.i += 3  # "after the kids were done banging on it"
+        else:
+            return False
         mark: NP | None = None
         while (tok := self.peek()) is not None and not tok.has("comma", "and", "but"):
             if self.np_start():
@@ -1042,6 +1060,17 @@ class ClauseParser(Grammar):
             return False
         if before.has("comma") and verb.tag != "VB":
             return False  # "we're out of toilet paper, check the cabinet …": a command
+        if head.kind == OBJECT and self._where_to_look(head, np, verb):
+            # "remote again, check the couch", "the remote is not on the couch, try the
+            # coffee table": the thing named first, looked for on the furniture named after
+            head.constraints.append(
+                RelationConstraint(
+                    predicate="near", landmark=np.landmark(), weight=self.weight("relation") / 2,
+                    text=f"{verb.text} {np.noun}",
+                )
+            )  # fmt: skip
+            self.notes.append(f"'{verb.text} {np.noun}': where to look for {head.noun!r}")
+            return True
         if head.kind == OBJECT and self._part_of_head(head, np, j):
             # "go to the high chair … and wipe the tray", "locate the filing cabinet and
             # open its top drawer": what is done to a part of the thing found first
@@ -1054,6 +1083,23 @@ class ClauseParser(Grammar):
             return True
         self._sought_near_head(out, np, "is the target")
         return True
+
+    @staticmethod
+    def _where_to_look(head: NP, np: NP, verb: Tok) -> bool:
+        """Whether a second command ("check", "try", "look in") names furniture to look
+        on or in for the thing named first, which is no furniture itself."""
+        if verb.lemma not in _LOOKING:
+            return False
+        furniture = [
+            g
+            for g in _FURNITURE_WORDS
+            if any(object_vocab.is_kind_of(label, g) for label in np.labels)
+        ]
+        if not furniture:
+            return False
+        return not any(
+            object_vocab.is_kind_of(label, g) for g in _FURNITURE_WORDS for label in head.labels
+        )
 
     def _part_of_head(self, head: NP, np: NP, j: int) -> bool:
         """Whether ``np`` (a command's object, its verb at token ``j``) is a part of

@@ -383,12 +383,29 @@ _NAMING_OPENINGS = (
     ("the", "object", "is", "the"),
     ("the", "target", "is", "the"),
 )
+# Openings that can only name the thing meant, however long what follows ("this
+# description is for the basket on top of the fridge").
+_DESCRIBED = tuple(
+    (*first, "is", word, "the")
+    for first in (("this", "description"), ("the", "description"), ("this", "text"))
+    for word in ("for", "about", "of")
+)
+_DESCRIPTION_OPENINGS = (
+    *_DESCRIBED,
+    ("the", "object", "is", "the"),
+    ("the", "target", "is", "the"),
+    ("the", "target", "object", "is", "the"),
+)
 
 
 def _names_the_object(sentence: list[Word]) -> bool:
     """Whether ``sentence`` is only "it is the X" / "the object is the X" (at most three
     words after the opening, ending on a noun): it says which thing is meant."""
     texts = tuple(w.text for w in sentence)
+    long_opening = next((o for o in _DESCRIPTION_OPENINGS if texts[: len(o)] == o), None)
+    if long_opening is not None:  # "this description is for the basket on the fridge"
+        after = sentence[len(long_opening) : len(long_opening) + 3]
+        return any(w.pos in ("NOUN", "PROPN") for w in after)
     opening = next((o for o in _NAMING_OPENINGS if texts[: len(o)] == o), None)
     if opening is None:
         return False
@@ -436,7 +453,7 @@ _RUN_ON_BREAKS = frozenset({",", ";", "-"})
 _RUN_ON_LINKS = frozenset({"and", "but", "so"})
 
 
-def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
+def split_at_pick(sentence: list[Word], errands: bool = False) -> list[list[Word]]:
     """A sentence that runs on after a comma (and "and") into a part that says which
     thing is meant ("in the kitchen there's a counter …, the kitchen cabinet we want is the one
     above the sink, …", "… with a diaper pail beside it, and the thing I mean is the
@@ -451,7 +468,9 @@ def split_at_pick(sentence: list[Word]) -> list[list[Word]]:
             continue  # "…, and the one I mean is the one with …": says more of the same
         if k < len(sentence) and sentence[k].text == "not":
             continue  # "the remote, not the tv one, the one for the AC": read whole
-        if k < len(sentence) and (picks_out(sentence[k:]) or _closing_pointer(sentence[k:])):
+        rest = sentence[k:]
+        pointing = _closing_pointer(rest) or (errands and points_back(rest))
+        if k < len(sentence) and (picks_out(rest) or pointing):
             return [sentence[:j], sentence[k:]]  # "… a fruit bowl, that's what I mean"
     return [sentence]
 
@@ -583,7 +602,24 @@ _POINTING_CLOSERS = (
     ["the", "one"], ["it"], ["what", "i", "mean"], ["what", "i", "want"], ["what", "i", "need"],
     ["what", "i", "am", "after"], ["what", "i", "am", "looking", "for"], ["the", "one", "i", "mean"],
     ["the", "one", "i", "want"], ["what", "we", "need"], ["what", "we", "want"],
+    ["the", "object"], ["the", "target"], ["the", "target", "object"], ["our", "target"],
+    ["the", "one", "described"], ["the", "object", "described"],
 )  # fmt: skip
+
+
+def last_clause(sentence: list[Word]) -> list[Word]:
+    """The last clause of a sentence that names several things in turn ("above the sink
+    is a window and on the windowsill sits a small cactus" → "on the windowsill sits a
+    small cactus"): what a closing "that is the one" points at."""
+
+    def clause(words: list[Word]) -> bool:
+        finite = any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in words)
+        return finite and any(w.pos == "NOUN" for w in words)
+
+    for k in range(len(sentence) - 2, 0, -1):
+        if sentence[k].text == "and" and clause(sentence[k + 1 :]) and clause(sentence[:k]):
+            return sentence[k + 1 :]
+    return sentence
 
 
 def _closing_pointer(sentence: list[Word]) -> bool:

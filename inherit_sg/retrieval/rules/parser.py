@@ -27,6 +27,7 @@ from inherit_sg.retrieval.rules.discourse import (
     count_superlative,
     description_after_it,
     hand_over,
+    last_clause,
     one_of_several,
     picks_out,
     point_it_at_view,
@@ -306,16 +307,21 @@ def parse_uncached(text: str) -> ParsedQuery:
     sentences = [part for sentence in sentences for part in _split_correction(sentence)]
     if sentences:
         sentences = [*split_scene(sentences[0]), *sentences[1:]]
-    sentences = [part for sentence in sentences for part in split_at_pick(sentence)]
+    sentences = [
+        part for n, sentence in enumerate(sentences) for part in split_at_pick(sentence, n > 0)
+    ]
     sentences = prepare(sentences)
     clause = Clause()
     situation = False
     placed_speaker = False  # a first sentence only said where the speaker is
     said_again = False  # a later sentence said more of the target ("… It is white.")
-    if len(sentences) > 2 and points_back(sentences[-1]):
-        # "… Behind it, against the wall, is a console table. Go to that."
-        notes.append("the last sentence points at the thing named just before it")
-        sentences, pointed = sentences[:-1], len(sentences) - 2
+    at = next((k for k in range(2, len(sentences)) if points_back(sentences[k])), None)
+    if at is not None:
+        # "… Behind it, against the wall, is a console table. Go to that.", "… under the
+        # desk there is a trash can, pick it. it's small and black"
+        notes.append("a later sentence points at the thing named just before it")
+        named = last_clause(sentences[at - 1])  # the thing named last, not first
+        sentences, pointed = [*sentences[: at - 1], named, *sentences[at + 1 :]], at - 1
     else:
         pointed = -1
     for n, sentence in enumerate(sentences):

@@ -51,6 +51,8 @@ _NUMBERED_PLACE = re.compile(
 # Words after which a numbered place already has its preposition or determiner.
 _BEFORE_PLACE = frozenset({"in", "on", "at", "the", "a", "to", "from", "of", "by", "near"})
 _ON_NUMBERED = frozenset({"floor", "level", "storey"})
+# A word asking where, at the end of search-box words ("water bottle location").
+_WHERE_WORD = re.compile(r"(?<=\w)\s+(?:location|position|whereabouts|where|loc)\s*\??\s*$", re.I)
 
 # What each understood key says (see the module docstring).
 _TARGET_KEYS = (
@@ -377,6 +379,7 @@ def _keyword_query(text: str) -> str:
 
     if _BEFORE_PLACE & set(re.findall(r"[a-z]+", text.lower())):
         return text  # words with grammar of their own
+    text = _WHERE_WORD.sub("", text)  # "water bottle location": where it is
     if len(text.split()) > 2:
         text = _NUMBERED_PLACE.sub(placed, text)
     thing, comma, place = text.rpartition(",")

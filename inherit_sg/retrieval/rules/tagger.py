@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
 
+from inherit_sg.nlp import known_lemma
 from inherit_sg.retrieval.rules.spelling import is_known_word
 from inherit_sg.retrieval.rules.tokens import Word
 from inherit_sg.vocab import colours as colour_vocab
@@ -492,6 +493,23 @@ def _modifies_noun(words: list[Word], i: int) -> bool:
     return i + 1 < len(words) and words[i + 1].pos in ("NOUN", "PROPN", "ADJ")
 
 
+def _comparative_as_noun(words: list[Word], i: int) -> bool:
+    """Whether word ``i``, by spaCy a comparative adjective, is a thing's name: right
+    after a determiner, with no noun, "of" or "one" after it, and a noun the vocabulary
+    knows ("the lighter", "the cooler"; not "the larger of the two")."""
+    word = words[i]
+    if word.tag != "JJR" or i == 0 or words[i - 1].pos != "DET":
+        return False
+    after = words[i + 1] if i + 1 < len(words) else None
+    if after is not None and after.pos in ("VERB", "AUX"):
+        return False  # "where did the cleaner put the dustpan": who did it
+    if after is not None and (
+        after.pos in ("NOUN", "PROPN", "ADJ") or after.text in ("of", "one", "ones", "than")
+    ):
+        return False
+    return known_lemma(word.text, "noun")
+
+
 def _verb_after_to(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is, by spaCy, a verb after "to" ("something to open a bottle
     with", "to clean the oven"), though the vocabulary knows it as an adjective."""
@@ -543,6 +561,9 @@ def tag(words: list[Word]) -> list[Tok]:
             )
             if n == 1 and i == 0 and tok.has("other") and len(words) > 1 and words[1].text == ",":
                 tok.tags = {"filler": words[i].text}  # "next, grab the potato": then
+            if n == 1 and _comparative_as_noun(words, i):
+                tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
+                tok.pos, tok.tag = "NOUN", "NN"
             if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
                 del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
                 tok.tags["filler"] = words[i].text
@@ -615,6 +636,9 @@ def tag(words: list[Word]) -> list[Tok]:
             i += n
         else:
             tok = _single(words[i], first)
+            if _comparative_as_noun(words, i):
+                tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
+                tok.pos, tok.tag = "NOUN", "NN"
             if tok.has("modal") and _noun_after_determiner(words, i):
                 tok.tags = {"unk": words[i].text}  # "an empty can on the desk": a thing
                 tok.pos, tok.tag = "NOUN", "NN"
@@ -681,6 +705,8 @@ def _noun_after_determiner(words: list[Word], i: int) -> bool:
     ):
         j -= 1  # "an empty can", "the red can" (spaCy's proper noun), "the gas can"
     after = words[i + 1] if i + 1 < len(words) else None
+    if after is not None and after.pos in ("VERB", "AUX"):
+        return False  # "where did the cleaner put the dustpan": who did it
     if after is not None and (after.tag == "VB" or after.text in ("not", "n't", "also")):
         return False  # "this can be moved", "the kids can't reach it"
     return j >= 0 and j < i and words[j].pos == "DET" and words[j].text not in ("that", "this")

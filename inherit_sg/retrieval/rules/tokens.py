@@ -30,6 +30,12 @@ _SPACED_DASH = re.compile(r"(?:^|\s)-{1,2}(?=\s|$)")
 _LETTER_DIGIT = re.compile(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?!st\b|nd\b|rd\b|th\b)(?=[A-Za-z])")
 _GLUED_STOP = re.compile(r"(?<=[a-z])([.!?;,])(?=[A-Za-z])")
 _SPACES = re.compile(r"\s+")
+# "… a black game console which is the target": the thing just named is the one meant.
+_WHICH_IS_TARGET = re.compile(
+    r",?\s+(?:which|that)\s+is\s+(?:the|our)\s+(?:target|object)(?:\s+described)?\b", re.I
+)
+# "where'd I put it", "what'd you do with it": after a question word, 'd is "did".
+_WH_DID = re.compile(r"\b(where|what|who|how|why|when)'d\b", re.IGNORECASE)
 # A chat mention of whom the message is for ("@robot grab the scissors").
 _MENTION = re.compile(r"(?<![\w@])@\w+")
 # Contracted forms spaCy returns as separate tokens, by (text, coarse tag).
@@ -219,6 +225,8 @@ def _without_written_words(text: str) -> str:
 def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
+    text = _WH_DID.sub(r"\1 did", text)
+    text = _WHICH_IS_TARGET.sub(", that is the target", text)
     text = _without_written_words(text)
     text = _BRACKETED_DOUBT.sub(" ", text)
     text = _ISH.sub(_without_ish, text)
