@@ -349,7 +349,7 @@ def _from_json(text: str) -> str | None:
 def _from_path(text: str) -> str | None:
     """ "kitchen/counter/mug" → "the mug at the counter in the kitchen": the last part is
     the thing, a room before it places it, and the part just before it is where it is."""
-    if _PATH.match(text) is None or " " in text.strip():
+    if " " in text.strip() or _PATH.match(text) is None:
         return None
     parts = [_without_number(_words(p)) for p in text.strip().split("/") if _words(p)]
     if len(parts) < 3:
