@@ -34,6 +34,14 @@ _SPACES = re.compile(r"\s+")
 _WHICH_IS_TARGET = re.compile(
     r",?\s+(?:which|that)\s+is\s+(?:the|our)\s+(?:target|object)(?:\s+described)?\b", re.I
 )
+# A diary-style past with no subject at the start: "lost one earbud somewhere …",
+# "dropped the remote behind the couch", "left my phone in the car" (with "I" added).
+_NO_SUBJECT_PAST = re.compile(
+    r"^(?:(lost|dropped|misplaced|forgot|stashed|hid|moved|tossed|threw)\s+"
+    r"(?=(?:my|the|a|an|one|our|his|her|their|some|both)\b)"
+    r"|(left)\s+(?=(?:my|our|his|her|their)\b))",
+    re.IGNORECASE,
+)
 # "where'd I put it", "what'd you do with it": after a question word, 'd is "did".
 _WH_DID = re.compile(r"\b(where|what|who|how|why|when)'d\b", re.IGNORECASE)
 # A chat mention of whom the message is for ("@robot grab the scissors").
@@ -226,6 +234,7 @@ def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
     text = _WH_DID.sub(r"\1 did", text)
+    text = _NO_SUBJECT_PAST.sub(lambda m: f"i {m.group(1) or m.group(2)} ", text)
     text = _WHICH_IS_TARGET.sub(", that is the target", text)
     text = _without_written_words(text)
     text = _BRACKETED_DOUBT.sub(" ", text)
