@@ -502,14 +502,15 @@ def asks_for_object(more: Clause) -> bool:
 
 def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str]) -> None:
     """ "which room has the piano?", "which bedroom has the crib?", "which room is the
-    recycling bin in": the question is answered by finding the thing, so the thing is the
+    recycling bin in", "does the bathroom have a hair dryer": the question is answered by finding the thing, so the thing is the
     target and a room kind the question names ("bedroom") places it. A room asked for by
     what it lacks ("which bathroom doesn't have a bathtub") stays the target. In place."""
     head = clause.head
     if head is None or head.kind != ROOM or clause.head_negated or not sentence:
         return
-    if sentence[0].text not in ("which", "what"):
-        return
+    asks = sentence[0].pos == "AUX" and sentence[0].lemma in ("do", "have")
+    if sentence[0].text not in ("which", "what") and not asks:
+        return  # a question: "which room has …", "does the bathroom have a hair dryer"
     if any(
         isinstance(c, Superlative) and c.measure in ("most", "fewest") for c in head.constraints
     ):

@@ -838,11 +838,22 @@ def _without_letter_frame(sentences: list[list[Word]]) -> list[list[Word]]:
     return sentences
 
 
+# Auxiliaries that open a question asking for a yes ("doesn't the bathroom have …",
+# "shouldn't there be …"), and the subjects after their "not".
+_ASKING_AUX = frozenset({"do", "should", "would", "could", "can", "will", "have", "shall", "must"})
+_ASKED_SUBJECTS = frozenset({"the", "there", "we", "you", "they", "my", "our", "this", "that"})
+
+
 def _without_rhetorical_not(sentence: list[Word]) -> list[Word]:
     """A question that asks for a yes ("Is it not the blue bowl?", "Was that not the
     lamp by the window?", "isn't this the washing machine?", "is the stove not turned
     off?", "isn't there a fire extinguisher in the garage", "isn't the cereal in the
-    pantry?") without its "not": "is it not X" asks whether it is X."""
+    pantry?", "doesn't the bathroom have a hair dryer", "shouldn't there be a fire
+    blanket", "don't we have a ladder") without its "not": "is it not X" asks whether it
+    is X."""
+    asking = len(sentence) >= 4 and sentence[0].pos == "AUX" and sentence[0].lemma in _ASKING_AUX
+    if asking and sentence[1].text == "not" and sentence[2].text in _ASKED_SUBJECTS:
+        return [sentence[0], *sentence[2:]]  # "doesn't the bathroom have …"
     if len(sentence) < 4 or sentence[0].lemma != "be" or sentence[0].pos != "AUX":
         return sentence
     if sentence[1].text in IT_WORDS and sentence[2].text == "not":

@@ -246,10 +246,21 @@ def _names_mended(text: str, fixes: list[tuple[str, str]]) -> str:
     from the second word of a thing's name whose first word comes just before it, where
     the word is no word of the vocabulary and only one such name fits."""
     words = list(re.finditer(r"[A-Za-z]+", text))
+    # a word the speller just mended is tried again as written ("ironing bord": "board",
+    # not the "bird" the speller chose alone)
+    written = {right: wrong.lower() for wrong, right in fixes}
     out, last = [], 0
     for k, (before, match) in enumerate(pairwise(words)):
         first, second = before.group(0).lower(), match.group(0).lower()
         seconds = _second_words().get(first)
+        if seconds and second in written and second not in seconds:
+            typed = written[second]
+            near = [w for w in seconds if _one_edit().compare(typed, w, 1) == 1]  # type: ignore[attr-defined]
+            if len(near) == 1:
+                fixes[:] = [(w, near[0] if r == second else r) for w, r in fixes]
+                out += [text[last : match.start()], near[0]]
+                last = match.end()
+                continue
         if (
             not seconds
             or len(second) < 4

@@ -493,6 +493,24 @@ def _modifies_noun(words: list[Word], i: int) -> bool:
     return i + 1 < len(words) and words[i + 1].pos in ("NOUN", "PROPN", "ADJ")
 
 
+# Participles that say where a thing is, or that it went, rather than how it looks.
+_PLACING_PARTICIPLES = frozenset(
+    {"keep", "locate", "find", "store", "put", "place", "leave", "move", "go", "see",
+     "mount", "hang", "situate", "position", "set", "bring", "take", "use"}
+)  # fmt: skip
+
+
+def _state_after_be(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` is a participle that says a state after "be" ("the radiator
+    that is not painted", "the one that hasn't been cleaned"), not a verb of its own."""
+    if words[i].tag != "VBN" or i == 0 or words[i].lemma in _PLACING_PARTICIPLES:
+        return False  # "where is the kit kept", "has it been moved": where, not a look
+    j = i - 1
+    while j > 0 and (words[j].text == "not" or words[j].pos == "ADV"):
+        j -= 1
+    return words[j].lemma == "be"
+
+
 def _comparative_as_noun(words: list[Word], i: int) -> bool:
     """Whether word ``i``, by spaCy a comparative adjective, is a thing's name: right
     after a determiner, with no noun, "of" or "one" after it, and a noun the vocabulary
@@ -561,6 +579,9 @@ def tag(words: list[Word]) -> list[Tok]:
             )
             if n == 1 and i == 0 and tok.has("other") and len(words) > 1 and words[1].text == ",":
                 tok.tags = {"filler": words[i].text}  # "next, grab the potato": then
+            ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
+            if n == 1 and tok.has("be") and ends and _state_after_be(words, i):
+                tok.tags = {"adj": ("state", words[i].text)}  # "it is not painted"
             if n == 1 and _comparative_as_noun(words, i):
                 tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
                 tok.pos, tok.tag = "NOUN", "NN"
@@ -636,6 +657,9 @@ def tag(words: list[Word]) -> list[Tok]:
             i += n
         else:
             tok = _single(words[i], first)
+            ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
+            if tok.has("overb") and not tok.has("fverb") and ends and _state_after_be(words, i):
+                tok.tags = {"adj": ("state", words[i].text)}  # "the radiator that isn't painted"
             if _comparative_as_noun(words, i):
                 tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
                 tok.pos, tok.tag = "NOUN", "NN"
