@@ -1000,8 +1000,13 @@ class Grammar(Cursor):
         if np.kind not in (ONE, GENERIC) or np.labels:
             return False
         ranked = any(isinstance(c, Superlative) for c in np.constraints)
+        # "the darker of the two rugs", "the newer of the laptops": a comparison
+        compared = any(
+            isinstance(c, AttributeConstraint) and c.text.endswith("er") for c in np.constraints
+        )
         return (
             ranked
+            or compared
             or np.kind == GENERIC
             or bool(np.superlative or np.ordinal or np.direction or np.quantity)
         )

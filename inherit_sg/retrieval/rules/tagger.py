@@ -500,6 +500,18 @@ _PLACING_PARTICIPLES = frozenset(
 )  # fmt: skip
 
 
+def _comparative_of(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` compares the things "of" names ("the darker of the two rugs"):
+    a comparative (by spaCy, or an "-er" word spaCy took for a noun) right after "the",
+    with "of" after it."""
+    if i == 0 or words[i - 1].text != "the" or i + 1 >= len(words) or words[i + 1].text != "of":
+        return False
+    word = words[i]
+    if known_lemma(word.text, "noun"):
+        return False  # "the owner of the house", "the cooler of the two"
+    return word.tag == "JJR" or (word.text.endswith("er") and known_lemma(word.text[:-2], "adj"))
+
+
 def _state_after_be(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is a participle that says a state after "be" ("the radiator
     that is not painted", "the one that hasn't been cleaned"), not a verb of its own."""
@@ -657,6 +669,9 @@ def tag(words: list[Word]) -> list[Tok]:
             i += n
         else:
             tok = _single(words[i], first)
+            if _comparative_of(words, i):
+                tok.tags = {"adj": ("other", words[i].lemma)}  # "the darker of the two rugs"
+                tok.pos, tok.tag = "ADJ", "JJR"
             ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
             if tok.has("overb") and not tok.has("fverb") and ends and _state_after_be(words, i):
                 tok.tags = {"adj": ("state", words[i].text)}  # "the radiator that isn't painted"

@@ -139,6 +139,8 @@ _WEEKDAY = re.compile(
 _PARTICLE_COMPOUND = re.compile(
     r"\b([A-Za-z]+)-(in|out|up|down|on|off|over|through|away)\s+([A-Za-z]+)", re.IGNORECASE
 )
+# A colour said with the word "colour": "cream colour", "rust-coloured", "wine colored".
+_COLOUR_WORD = re.compile(r"\b([A-Za-z]+)[ -](colou?r(?:ed)?)\b", re.IGNORECASE)
 # "wall mounted", "ceiling-mounted": how a thing is fixed, written before its name.
 _MOUNTED = re.compile(r"\b(?:wall|ceiling)[- ](mounted|hung)\b", re.IGNORECASE)
 
@@ -170,6 +172,21 @@ def _without_weekday(match: re.Match[str]) -> str:
     if before.endswith((" one", " ones")) or before.endswith(("the one from", "the ones from")):
         return match.group(0)
     return " "
+
+
+_SHADE_COMPARATIVES = frozenset({"lighter", "darker", "brighter", "paler", "deeper"})
+
+
+def _colour_said(match: re.Match[str]) -> str:
+    """ "cream colour" → "cream", "light blue coloured" → "light blue": the colour itself;
+    a word that names no colour ("rust-coloured") says one all the same, as an -ish hedge
+    would ("rustish"); other words before "colour" stay ("the same colour")."""
+    word = match.group(1)
+    if colour_or_material(word.lower()) or word.lower() in _SHADE_COMPARATIVES:
+        return word  # "cream colour", "the lighter-coloured of the two rugs"
+    if match.group(0)[len(word)] == "-":
+        return f"{word}ish"
+    return match.group(0)
 
 
 def _particle_compound(match: re.Match[str]) -> str:
@@ -240,6 +257,7 @@ def normalise(text: str) -> str:
     text = _BRACKETED_DOUBT.sub(" ", text)
     text = _ISH.sub(_without_ish, text)
     text = _MOUNTED.sub(r"\1", text)  # (the surface is no thing sought)
+    text = _COLOUR_WORD.sub(_colour_said, text)
     text = _PACES_AWAY.sub(" ", text)
     text = _WEEKDAY.sub(_without_weekday, text)
     text = _HYPHEN_PARTICIPLE.sub(_participle_compound, text)
