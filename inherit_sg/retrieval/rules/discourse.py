@@ -235,14 +235,19 @@ def _sets_scene(sentence: list[Word]) -> str | None:
     if not verbs:  # a thing and its place ("from the couch, …" is a viewpoint)
         placed = words[0].pos != "ADP" and any(w.pos == "ADP" for w in words)
         return "fragment" if placed else None  # a bare description names the target
+    k = words.index(verbs[0])
+    subject = " ".join(w.text for w in words[:k] if w.pos != "DET")
+    if verbs[0].lemma in _HOLDING and subject and room_type(subject) is not None:
+        return "there"  # "The bathroom has a sink, a toilet and a bathtub."
     if verbs[0].lemma != "be":
-        k = words.index(verbs[0])
         thing_stands = k > 0 and words[k - 1].pos in ("NOUN", "PROPN")
         return "fragment" if verbs[0].lemma in _STANDING and thing_stands else None
     after = words[words.index(verbs[0]) + 1 :]
     return "statement" if after and after[0].pos == "ADP" else None
 
 
+# Verbs by which a room sets the scene ("the bathroom has a sink and a tub").
+_HOLDING = frozenset({"have", "contain", "hold", "feature"})
 # Verbs that say where a thing stands ("a couch sits under the window").
 _STANDING = frozenset({"sit", "stand", "hang", "lean", "lie", "rest"})
 
