@@ -139,6 +139,15 @@ _FURNITURE_WORDS = ("furniture", "storage", "container", "surface")
 _OWNER_PRONOUNS = frozenset({"mine", "hers", "his", "yours", "ours", "theirs"})
 
 
+def _furnishing(np: NP) -> bool:
+    """Whether ``np`` names a piece of furniture, storage, a container or a surface."""
+    return any(
+        object_vocab.is_kind_of(label, general)
+        for general in _FURNITURE_WORDS
+        for label in np.labels
+    )
+
+
 def _as_placements(head: NP, cons: list[Constraint]) -> list[Constraint]:
     """A contrasting "one in the middle" after a head placed in its room ("the table in the
     corner, not the one in the centre") means the middle of the room, not of a row."""
@@ -1088,18 +1097,7 @@ class ClauseParser(Grammar):
     def _where_to_look(head: NP, np: NP, verb: Tok) -> bool:
         """Whether a second command ("check", "try", "look in") names furniture to look
         on or in for the thing named first, which is no furniture itself."""
-        if verb.lemma not in _LOOKING:
-            return False
-        furniture = [
-            g
-            for g in _FURNITURE_WORDS
-            if any(object_vocab.is_kind_of(label, g) for label in np.labels)
-        ]
-        if not furniture:
-            return False
-        return not any(
-            object_vocab.is_kind_of(label, g) for g in _FURNITURE_WORDS for label in head.labels
-        )
+        return verb.lemma in _LOOKING and _furnishing(np) and not _furnishing(head)
 
     def _part_of_head(self, head: NP, np: NP, j: int) -> bool:
         """Whether ``np`` (a command's object, its verb at token ``j``) is a part of

@@ -125,6 +125,12 @@ def _object_is_it(sentence: list[Word]) -> bool:
     return bool(rest) and (rest[0] in IT_WORDS or (rest[-1] in IT_WORDS and rest[0] == "me"))
 
 
+def _has_finite_verb(words: list[Word]) -> bool:
+    """Whether ``words`` hold a finite verb (by spaCy: a verb or auxiliary in the present
+    or past tense), so that they make a clause rather than a bare phrase."""
+    return any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in words)
+
+
 def scene_then_target(
     clause: Clause, first: list[Word], more: Clause, later: list[Word], fronted: bool = False
 ) -> bool:
@@ -162,7 +168,7 @@ def scene_then_target(
         return False
     if fronted:
         return True
-    if not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in later):
+    if not _has_finite_verb(later):
         return True  # "pillow on the left side of it, white"
     said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]
     described = any(_describes(c) for c in said) or _says_what_it_is(later)
@@ -205,7 +211,7 @@ def split_scene(sentence: list[Word]) -> list[list[Word]]:
         asks = after[0].text in ("how", "what", "which", "where")  # ", how many chairs …"
         if after[0].text != "the" and after[0].pos != "ADP" and not asks:
             continue
-        own_verb = any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in after)
+        own_verb = _has_finite_verb(after)
         scene = _sets_scene(sentence[:j])
         if own_verb and (scene == "there" or (scene == "fragment" and not asks)):
             return [sentence[:j], after]
@@ -507,9 +513,10 @@ def asks_for_object(more: Clause) -> bool:
 
 def thing_the_room_holds(clause: Clause, sentence: list[Word], notes: list[str]) -> None:
     """ "which room has the piano?", "which bedroom has the crib?", "which room is the
-    recycling bin in", "does the bathroom have a hair dryer": the question is answered by finding the thing, so the thing is the
-    target and a room kind the question names ("bedroom") places it. A room asked for by
-    what it lacks ("which bathroom doesn't have a bathtub") stays the target. In place."""
+    recycling bin in", "does the bathroom have a hair dryer": the question is answered by
+    finding the thing, so the thing is the target and a room kind the question names
+    ("bedroom") places it. A room asked for by what it lacks ("which bathroom doesn't
+    have a bathtub") stays the target. In place."""
     head = clause.head
     if head is None or head.kind != ROOM or clause.head_negated or not sentence:
         return
@@ -619,8 +626,7 @@ def last_clause(sentence: list[Word]) -> list[Word]:
     small cactus"): what a closing "that is the one" points at."""
 
     def clause(words: list[Word]) -> bool:
-        finite = any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in words)
-        return finite and any(w.pos == "NOUN" for w in words)
+        return _has_finite_verb(words) and any(w.pos == "NOUN" for w in words)
 
     for k in range(len(sentence) - 2, 0, -1):
         if sentence[k].text == "and" and clause(sentence[k + 1 :]) and clause(sentence[:k]):
@@ -637,9 +643,9 @@ def _closing_pointer(sentence: list[Word]) -> bool:
 def points_back(sentence: list[Word]) -> bool:
     """Whether ``sentence`` is only an errand at "that" / "it" / "this one" ("Go to that.",
     "Find that.", "grab that one"): the thing meant is the last one named before it."""
+    if _closing_pointer(sentence):
+        return True
     texts = [w.text for w in sentence if w.text not in (",", "please", "just", ".", "!")]
-    if texts[:2] in (["that", "is"], ["this", "is"]):
-        return _closing_pointer(sentence)
     if not texts or sentence[0].lemma not in _POINTING_ERRANDS or len(texts) > 4:
         return False
     rest = texts[1:]
@@ -686,7 +692,7 @@ def _picking_sentence(sentence: list[Word]) -> bool:
         return True
     if texts[0] in ("i", "we") and len(sentence) > 1 and sentence[1].lemma in _PICK_VERBS:
         return True
-    return not any(w.tag in FINITE and w.pos in ("VERB", "AUX") for w in sentence)
+    return not _has_finite_verb(sentence)
 
 
 def one_of_several(
@@ -705,12 +711,11 @@ def one_of_several(
         return False
     if not any(w.pos == "NOUN" or w.text == "one" for w in later):
         return False  # "It is round and made of glass": said of the target
-    head_kind = head.kind == OBJECT and any(set(head.labels) & set(k) for k, _ in kinds)
     if other.kind == OBJECT and other.labels and not other.plural:
         if head.kind == OBJECT and same_thing(head, other):
             return False
         return any(set(other.labels) & set(k) for k, _ in kinds)
-    if other.kind == ONE and not other.labels and head.kind == ROOM and not head_kind:
+    if other.kind == ONE and not other.labels and head.kind == ROOM:
         # only after a room that sets the scene; after a thing, "the one" is that thing
         labels, noun = kinds[-1]
         other.kind, other.labels, other.words, other.known = (

@@ -1242,12 +1242,13 @@ class Grammar(Cursor):
             return None
         lm = self._side_of(lm)
         if predicate == "inside" and tok.text in lexicon().outside_prepositions:
-            if lm.kind == ROOM and self._just_outside(at, lm):
+            just_outside = self._just_outside(at, lm)
+            if lm.kind == ROOM and just_outside:
                 # "just outside the kitchen", "in the hallway outside the lab", "outside
                 # room 12": beside the room, in another one; neither in it nor ruled out
                 self.notes.append(f"'{tok.text} {lm.noun}': beside that room, not out of it")
                 return []
-            if _opening(lm) or self._just_outside(at, lm):
+            if _opening(lm) or just_outside:
                 # "the patio chair outside the sliding door", "… outside the lab"
                 predicate, neg = "near", not neg
         text = f"{tok.text} {lm.noun or lm.kind}"

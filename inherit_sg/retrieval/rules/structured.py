@@ -126,14 +126,12 @@ class _Fields:
     excluded: list[str] = field(default_factory=list)
     extra: list[str] = field(default_factory=list)
     relation_word: str = ""
-    understood: int = 0
 
 
 def _words(value: str) -> str:
     """A value as words: quotes, brackets and underscores gone, digits after a name
     kept apart ("bed_7" → "bed 7")."""
     value = value.strip().strip(",;|&").strip()
-    value = value.strip("\"'`").strip()
     value = re.sub(r"[\[\](){}\"'`]", " ", value)
     value = re.sub(r"[_]+", " ", value)
     return re.sub(r"\s+", " ", value).strip()
@@ -184,22 +182,21 @@ def _floor_phrase(words: str) -> str:
     return f"on the {first} floor"
 
 
-def _take(fields: _Fields, key: str, op: str, value: str) -> None:
-    """Fold one key/value pair into ``fields``."""
+def _take(fields: _Fields, key: str, op: str, value: str) -> bool:
+    """Fold one key/value pair into ``fields``; whether its key was understood (a pair
+    with no value, or with a key not understood, says nothing)."""
     name = key.lower().rsplit(".", 1)[-1]
     words = _words(value)
     if not words or words in ("?", "*", "none", "null", "any"):
-        return
+        return False
     negated = op == "!=" or name in _EXCLUDE_KEYS
     prefix, _, inner = name.partition("_")
     if prefix in ("exclude", "excluding", "except", "not", "no", "avoid") and inner:
         negated, name = True, inner  # "exclude_color": a colour ruled out
     if negated and name in _ATTRIBUTE_KEYS:
-        fields.understood += 1
         fields.excluded.append(f"not {words.replace(',', ' ')}")  # "not white"
-        return
+        return True
     if negated:
-        fields.understood += 1
         placed = name in _PLACE_KEYS or "room" in name or room_type(words) is not None
         if words.split()[0].lower() in _PREPOSITIONS:
             fields.excluded.append(f"not {words}")  # "not near window"
@@ -207,37 +204,32 @@ def _take(fields: _Fields, key: str, op: str, value: str) -> None:
             fields.excluded.append(f"not {_place_phrase(words, room=True)}")
         else:
             fields.excluded.append(f"not {_the(words)}")
-        return
+        return True
     if name in _TARGET_KEYS:
-        fields.understood += 1
         if not fields.target:
             fields.target = words
         else:
             fields.attributes.append(words)
     elif name in _TYPE_KEYS:
-        fields.understood += 1
         fields.kind = words
     elif name in _ATTRIBUTE_KEYS:
-        fields.understood += 1
         fields.attributes.append(words.replace(",", " "))
     elif name in _FLOOR_KEYS:
-        fields.understood += 1
         floor, _, rest = words.partition(",")
         fields.floor = _floor_phrase(floor.strip(" ()"))
         fields.extra += [w for w in (_words(rest.strip(" ()")),) if w]
     elif name in _PLACE_KEYS:
-        fields.understood += 1
         fields.places.append(_place_phrase(_without_number(words), room=name in _ROOM_KEYS))
     elif name in _NEAR_KEYS:
-        fields.understood += 1
         fields.relations.append(f"{fields.relation_word or 'near'} {_the(words)}")
         fields.relation_word = ""
     elif name in _PREPOSITION_KEYS:
-        fields.understood += 1
         fields.relations.append(f"{_PREPOSITION_KEYS[name]} {_the(words)}")
     elif name in _RELATION_KEYS:
-        fields.understood += 1
         fields.relation_word = words.lower()
+    else:
+        return False
+    return True
 
 
 def _pairs(text: str) -> list[tuple[str, str, str]]:
@@ -278,9 +270,8 @@ def _from_pairs(text: str) -> str | None:
     if len(pairs) == 1 and names[0] in _LABEL_KEYS:
         return None  # "Goal: find the red mug": a label before a sentence
     fields = _Fields()
-    for key, op, value in pairs:
-        _take(fields, key, op, value)
-    return _phrase(fields) if fields.understood else None
+    understood = [_take(fields, key, op, value) for key, op, value in pairs]
+    return _phrase(fields) if any(understood) else None
 
 
 def _arguments(inside: str) -> list[str]:
@@ -315,7 +306,6 @@ def _from_call(text: str) -> str | None:
             _take(fields, pair.group(1), pair.group(2), arg[pair.end() :])
         elif not fields.target:
             fields.target = _words(arg)
-            fields.understood += 1
     for key, op, value in _pairs(match.group(3) or ""):
         _take(fields, key, op, value)
     return _phrase(fields)
@@ -334,16 +324,17 @@ def _from_json(text: str) -> str | None:
     if not isinstance(data, dict):
         return None
     fields = _Fields()
+    understood = False
     for key, value in data.items():
         if isinstance(value, dict):
             for inner, deeper in value.items():
-                _take(fields, str(inner), ":", str(deeper))
+                understood |= _take(fields, str(inner), ":", str(deeper))
         elif isinstance(value, list):
             for item in value:
-                _take(fields, str(key), ":", str(item))
+                understood |= _take(fields, str(key), ":", str(item))
         elif value is not None:
-            _take(fields, str(key), ":", str(value))
-    return _phrase(fields) if fields.understood else None
+            understood |= _take(fields, str(key), ":", str(value))
+    return _phrase(fields) if understood else None
 
 
 def _from_path(text: str) -> str | None:

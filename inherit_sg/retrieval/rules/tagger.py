@@ -512,6 +512,19 @@ def _comparative_of(words: list[Word], i: int) -> bool:
     return word.tag == "JJR" or (word.text.endswith("er") and known_lemma(word.text[:-2], "adj"))
 
 
+def _read_in_context(tok: Tok, words: list[Word], i: int, verb: bool) -> None:
+    """Readings of one word that the words around it decide: a participle that ends a
+    clause after "be" says a state ("the radiator that isn't painted"; ``verb``: the
+    word was read as a verb), and a comparative after "the" can name a thing ("where did
+    I leave the lighter")."""
+    ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
+    if verb and ends and _state_after_be(words, i):
+        tok.tags = {"adj": ("state", words[i].text)}
+    if _comparative_as_noun(words, i):
+        tok.tags = {"unk": words[i].text}
+        tok.pos, tok.tag = "NOUN", "NN"
+
+
 def _state_after_be(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is a participle that says a state after "be" ("the radiator
     that is not painted", "the one that hasn't been cleaned"), not a verb of its own."""
@@ -591,12 +604,8 @@ def tag(words: list[Word]) -> list[Tok]:
             )
             if n == 1 and i == 0 and tok.has("other") and len(words) > 1 and words[1].text == ",":
                 tok.tags = {"filler": words[i].text}  # "next, grab the potato": then
-            ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
-            if n == 1 and tok.has("be") and ends and _state_after_be(words, i):
-                tok.tags = {"adj": ("state", words[i].text)}  # "it is not painted"
-            if n == 1 and _comparative_as_noun(words, i):
-                tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
-                tok.pos, tok.tag = "NOUN", "NN"
+            if n == 1:
+                _read_in_context(tok, words, i, verb=tok.has("be"))  # "it is not painted"
             if n == 1 and words[i].pos == "INTJ" and "neg" in tok.tags:
                 del tok.tags["neg"]  # "no, not the sofa": "no" answers, it negates nothing
                 tok.tags["filler"] = words[i].text
@@ -672,12 +681,7 @@ def tag(words: list[Word]) -> list[Tok]:
             if _comparative_of(words, i):
                 tok.tags = {"adj": ("other", words[i].lemma)}  # "the darker of the two rugs"
                 tok.pos, tok.tag = "ADJ", "JJR"
-            ends = i + 1 >= len(words) or words[i + 1].text in (",", "and", "or", "but")
-            if tok.has("overb") and not tok.has("fverb") and ends and _state_after_be(words, i):
-                tok.tags = {"adj": ("state", words[i].text)}  # "the radiator that isn't painted"
-            if _comparative_as_noun(words, i):
-                tok.tags = {"unk": words[i].text}  # "where did I leave the lighter"
-                tok.pos, tok.tag = "NOUN", "NN"
+            _read_in_context(tok, words, i, verb=tok.has("overb") and not tok.has("fverb"))
             if tok.has("modal") and _noun_after_determiner(words, i):
                 tok.tags = {"unk": words[i].text}  # "an empty can on the desk": a thing
                 tok.pos, tok.tag = "NOUN", "NN"

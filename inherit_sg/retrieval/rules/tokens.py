@@ -169,7 +169,7 @@ def _without_weekday(match: re.Match[str]) -> str:
     """The text without a day of the week, unless the day tells one thing from another
     ("not the one from Tuesday")."""
     before = match.string[: match.start()].lower().rstrip()
-    if before.endswith((" one", " ones")) or before.endswith(("the one from", "the ones from")):
+    if before.endswith((" one", " ones", "the one from", "the ones from")):
         return match.group(0)
     return " "
 

@@ -197,7 +197,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         and not purpose
         and not _worn(g)
         and _imperative(g, start)
-        and next((w for w in words if w not in ("me", "us")), "") in PARTICULAR
+        and _first_object_word(words) in PARTICULAR
     ):
         # "put my slippers by the bed", "put the mug away", "put the apple from the
         # counter in the fridge": one particular thing to move, found first
@@ -288,9 +288,13 @@ def _acts_on_particular(g: Grammar, start: int, obj: NP, words: list[str], aside
         return False
     if not _imperative(g, start):
         return False
-    opened = next((w for w in words if w not in ("me", "us")), "")
     placed = any(isinstance(c, RelationConstraint) for c in obj.constraints)
-    return opened in PARTICULAR or placed
+    return _first_object_word(words) in PARTICULAR or placed
+
+
+def _first_object_word(words: list[str]) -> str:
+    """The word that opens a verb's object, past whom it is for ("put me the …")."""
+    return next((w for w in words if w not in ("me", "us")), "")
 
 
 def _fetches_particular(tok: Tok, obj: NP | None, words: list[str]) -> bool:
