@@ -248,6 +248,13 @@ def _contrast(prev: Tok | None) -> bool:
     )
 
 
+def _ruled_out(cons: list[Constraint]) -> list[Constraint]:
+    """What a phrase ruled out said of its thing, each negated. What it said negated
+    ("not the trolley outside the kitchen, the one in the corridor") is dropped: it
+    described the one not wanted, and the one wanted is described anew."""
+    return [replace(c, negated=True) for c in cons if not c.negated]
+
+
 def parts_of_head(head: NP, cons: list[Constraint]) -> list[Constraint]:
     """``cons`` with each "with X" relation turned into a part where X is a part of the
     head's kind: "the nightstands, the one without drawers" (the "one" could not know)."""
@@ -619,7 +626,8 @@ class ClauseParser(Grammar):
                 self.restore(here)
         self._second_view()  # "standing at the printer looking toward the windows"
         opener = opener or cue.text.split()[0] in _VIEW_OPENERS
-        if lm is not None and not opener and not self._more_follows():
+        moving = cue.lemma in lx.viewpoint_verbs  # "walk to …", not "face …"
+        if lm is not None and not opener and not self._more_follows(moving):
             self.restore(snap)  # "look at the clock on the wall": the clock is sought
             return False
         landmark = self._viewpoint_landmark(lm)
@@ -762,15 +770,31 @@ class ClauseParser(Grammar):
         self.i += k
         return True
 
-    def _more_follows(self) -> bool:
+    def _more_follows(self, moving: bool = False) -> bool:
         """Whether the request goes on after a viewpoint phrase (else that phrase names
-        the target: "look at the clock")."""
+        the target: "look at the clock"). After a phrase of ``moving`` ("walk to the
+        stool") a bare place that follows places its thing: it goes on no further."""
         tok = self.peek()
         if tok is None:
             return self.more_sentences  # "Face the radiator. The picture to its left."
         if tok.has("comma", "and"):
+            if moving and self._place_of_it_follows():
+                return False  # "walk to the stool, over by the back door"
             return self.peek(1) is not None or self.more_sentences
         return tok.has("anaphor", "det", "be", "one") or self.np_start()
+
+    def _place_of_it_follows(self) -> bool:
+        """Whether all that follows the comma here is a place with no thing of its own
+        ("…, over by the back door", "…, near the island"): it places what came before."""
+        if self.more_sentences:
+            return False
+        rest = self.toks[self.i + 1 :]
+        k = 0
+        while k < len(rest) and rest[k].text in ("over", "right", "just", "somewhere"):
+            k += 1
+        if k >= len(rest) or not rest[k].has("prep"):
+            return False
+        return not any(t.has("comma", "be", "one", "and") or t.pos == "VERB" for t in rest)
 
     def _skip_clause(self) -> None:
         """Skip to the end of a subordinate clause (a comma, "and", or the end)."""
@@ -863,7 +887,8 @@ class ClauseParser(Grammar):
         """Negate the places the negated head was given, now that a contrasting phrase
         keeps its kind ("not the toilet in the WC, the other one": not in the WC)."""
         mine = {id(c) for c in out.negated_head_places}
-        out.places = [replace(c, negated=not c.negated) if id(c) in mine else c for c in out.places]
+        kept = [c for c in out.places if id(c) not in mine]
+        out.places = kept + _ruled_out([c for c in out.places if id(c) in mine])
         out.negated_head_places = []
 
     def _noun_phrase(self, out: Clause, refine: bool) -> None:
@@ -998,9 +1023,7 @@ class ClauseParser(Grammar):
         if pointed and not details and not out.negated_head_places:
             out.exclude_previous = True  # "not that chair, the one by the window"
             self.notes.append(f"'not that {old.noun}': the one shown before is ruled out")
-        old.constraints = [replace(c, negated=not c.negated) for c in old.constraints] + (
-            np.constraints
-        )
+        old.constraints = _ruled_out(old.constraints) + np.constraints
         old.places += np.places
         old.other = old.other or np.other  # "not that remote, the other one"
         self._negate_head_places(out)

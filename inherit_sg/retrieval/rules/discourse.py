@@ -168,6 +168,9 @@ def scene_then_target(
         return False
     if fronted:
         return True
+    several = any(w in ("and", "or") for w in head.words)  # "there's a couch and a TV."
+    if several and later[0].text == "the" and _sets_scene(later) == "statement":
+        return True  # "… The remote is on the couch."
     if not _has_finite_verb(later):
         return True  # "pillow on the left side of it, white"
     said = [*other.constraints, *(d for c in by_it for d in c.landmark.constraints)]

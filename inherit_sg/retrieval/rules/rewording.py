@@ -28,6 +28,10 @@
 - "besides" written for "beside" between two things ("the magazine rack besides the
   armchair") places the first by the second; "any chair besides the red one" still
   rules one out.
+- "the wardrobe whose doors aren't mirrored": a part and its quality ("without mirrored
+  doors").
+- "leave the heavy box and bring the small box", "forget the kitchen, check the grill":
+  what is set aside before the errand is ruled out.
 """
 
 from __future__ import annotations
@@ -538,3 +542,67 @@ def _any_more(texts: list[str], j: int) -> bool:
     return texts[j] == "anymore" or (
         texts[j] == "any" and texts[j + 1 : j + 2] in (["more"], ["longer"])
     )
+
+
+_WITH = Word("with", "with", "ADP", "IN", "prep")
+_WITHOUT = Word("without", "without", "ADP", "IN", "prep")
+_QUALITY_POS = frozenset({"ADJ", "NOUN", "PROPN", "VERB"})
+
+
+def whose_as_with(sentence: list[Word]) -> list[Word]:
+    """ "the wardrobe whose doors are mirrored" as "the wardrobe with mirrored doors", and
+    "the cabinet whose doors aren't glass" as "… without glass doors": what "whose" says
+    of a part, as a part with that quality (ruled out where the clause is negated). A
+    clause that says more than one or two words of quality ("whose top is covered in
+    papers") reads "with" its part and the rest as it stands."""
+    for i, word in enumerate(sentence):
+        if word.text != "whose" or i == 0:
+            continue
+        j = i + 1
+        while j < len(sentence) and sentence[j].pos in ("ADJ", "NOUN", "PROPN"):
+            j += 1
+        part = sentence[i + 1 : j]
+        if not part or j >= len(sentence) or sentence[j].lemma != "be":
+            return sentence
+        k = j + 1
+        negated = k < len(sentence) and sentence[k].text == "not"
+        k += negated
+        if sentence[k : k + 2] and [w.text for w in sentence[k : k + 2]] == ["made", "of"]:
+            k += 2  # "whose legs are made of metal"
+        end = k
+        while end < len(sentence) and sentence[end].pos in _QUALITY_POS and end - k < 2:
+            end += 1
+        closed = end == len(sentence) or sentence[end].pos in ("PUNCT", "CCONJ")
+        if end == k or not closed:
+            return [*sentence[:i], _WITH, *part, *sentence[j + 1 :]]
+        quality = [Word(w.text, w.text, "ADJ", "JJ", "amod") for w in sentence[k:end]]
+        return [*sentence[:i], _WITHOUT if negated else _WITH, *quality, *part, *sentence[end:]]
+    return sentence
+
+
+_NOT = Word("not", "not", "PART", "RB", "neg")
+_SETTING_ASIDE = frozenset({"leave", "forget"})
+
+
+def set_aside_first(sentence: list[Word]) -> list[Word]:
+    """ "leave the heavy box and bring the small box", "forget the kitchen, check the
+    grill on the deck", "never mind the sofa, look under the bed": a thing or place set
+    aside before the errand is ruled out, as "…, not the heavy box" would. Only a bare
+    phrase is set aside: "leave the keys on the table and …" says where to put them."""
+    start = 2 if [w.text for w in sentence[:2]] == ["never", "mind"] else 1
+    if start == 1 and (not sentence or sentence[0].text not in _SETTING_ASIDE):
+        return sentence
+    end = start
+    while end < len(sentence) and sentence[end].pos in ("DET", "ADJ", "NOUN", "PROPN", "NUM"):
+        end += 1
+    phrase = sentence[start:end]
+    if not any(w.pos in ("NOUN", "PROPN") for w in phrase) or end + 1 >= len(sentence):
+        return sentence
+    if sentence[end].text not in (",", "and"):
+        return sentence
+    k = end + 1
+    if sentence[k].text in (",", "and", "just", "then", "please"):
+        k += 1
+    if k >= len(sentence) or sentence[k].pos != "VERB" or sentence[k].tag != "VB":
+        return sentence
+    return [*sentence[k:], COMMA, _NOT, *phrase]

@@ -20,6 +20,8 @@ from inherit_sg.retrieval.rules.rewording import (
     non_words,
     only_thing,
     owner_side,
+    set_aside_first,
+    whose_as_with,
     without_moved_away,
     without_no_idea,
     without_no_longer,
@@ -63,11 +65,12 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
     sentences = [non_words(without_run_out(without_no_idea(floor_asked(s)))) for s in sentences]
-    sentences = [without_no_longer(s) for s in sentences]
+    sentences = [set_aside_first(without_no_longer(s)) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [
-        without_sign_negation(another_as_one_more(without_moved_away(s))) for s in sentences
+        whose_as_with(without_sign_negation(another_as_one_more(without_moved_away(s))))
+        for s in sentences
     ]
     sentences = [_instrument_asked(_errand_of_caution(sentence)) for sentence in sentences]
     sentences = [_after_but_it_is(_without_hedged_guess(sentence)) for sentence in sentences]

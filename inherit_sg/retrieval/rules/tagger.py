@@ -695,15 +695,19 @@ def tag(words: list[Word]) -> list[Tok]:
 
 
 def _thing_after_except(toks: list[Tok]) -> list[Tok]:
-    """ "anything but that green thing", "except the broken things": "thing" right after
-    an exception and its modifiers stands for the kind sought, as "one" does."""
+    """ "anything but that green thing", "except the broken things", "exclude anything in
+    the attic": "thing" right after an exception and its modifiers, or "anything" right
+    after it, stands for the kind sought, as "one" does."""
     for j, tok in enumerate(toks):
-        if tok.text not in ("thing", "things") or not tok.has("generic", "noun", "unk"):
+        whole = tok.text in ("anything", "everything")  # "exclude anything in the attic"
+        if tok.text not in ("thing", "things") and not whole:
+            continue
+        if not tok.has("generic", "noun", "unk") and not whole:
             continue
         k = j - 1
         while k >= 0 and toks[k].has("det", "colour", "material", "adj", "size", "attr"):
             k -= 1  # "that green", "the chipped"
-        if k >= 0 and k < j - 1 and toks[k].has("except"):
+        if k >= 0 and (k < j - 1 or whole) and toks[k].has("except"):
             toks[j] = Tok(tok.text, {"one": True}, tok.text == "things", pos=tok.pos,
                           lemma=tok.lemma, tag=tok.tag)  # fmt: skip
     return toks

@@ -424,8 +424,27 @@ def analyse_text(text: str) -> tuple[list[list[Word]], list[tuple[str, str]]]:
         while words and words[-1] is COMMA:
             words.pop()
         if words:
-            out.append(_its_is(_shades_named_by_things(_nouns_read_as_verbs(words))))
+            words = _shades_named_by_things(_nouns_read_as_verbs(_owners_of_areas(words)))
+            out.append(_its_is(words))
     return out, fixes
+
+
+# Areas a possessor names rather than owns: "the children's section", "the staff area".
+_OWNED_AREAS = frozenset({"section", "area", "zone", "nook", "bay", "quarter", "wing"})
+
+
+def _owners_of_areas(words: list[Word]) -> list[Word]:
+    """A possessor before an area ("the children's section", "the kids' area") as part
+    of the area's name, not its owner (an owner is dropped like a determiner)."""
+    out = list(words)
+    for i, word in enumerate(words[:-1]):
+        if (
+            word.dep == "poss"
+            and word.pos in ("NOUN", "PROPN")
+            and words[i + 1].text in _OWNED_AREAS
+        ):
+            out[i] = Word(word.text, word.lemma, word.pos, word.tag, "compound")
+    return out
 
 
 _NOT_NOUN = ("verb", "adj", "adv")
