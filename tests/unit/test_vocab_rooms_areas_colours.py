@@ -78,7 +78,8 @@ def test_related_types_are_symmetric() -> None:
 
 def test_aliases_and_room_words() -> None:
     assert "guest room" in rooms.aliases("bedroom")
-    assert {"den", "lounge"} <= set(rooms.aliases("family room"))
+    assert {"den", "family lounge"} <= set(rooms.aliases("family room"))
+    assert {"lounge", "sitting room"} <= set(rooms.aliases("living room"))  # as people say
     assert {"media room", "home theater"} <= set(rooms.aliases("tv room"))
     assert rooms.aliases("no such room") == ()
     words = rooms.room_words()

@@ -9,7 +9,9 @@ from inherit_sg.retrieval.constraints import (
     Constraint,
     FunctionConstraint,
     LabelConstraint,
+    Landmark,
     RelationConstraint,
+    RoomConstraint,
     Superlative,
     Target,
 )
@@ -26,6 +28,7 @@ from inherit_sg.retrieval.rules.phrase import (
     ONE,
     VAGUE,
 )
+from inherit_sg.vocab.lexicon import lexicon
 
 NO_TARGET = "no object, place or function found in the request"
 _NO_LABEL_KINDS = (GENERIC, GENERIC_AREA, VAGUE, ONE, ANAPHOR)
@@ -133,6 +136,74 @@ def _guess_function(words: list[str], notes: list[str]) -> list[FunctionConstrai
     ]
 
 
+# Weight of "near the thing the speaker stands at or sits on", given to the target
+# ("sitting on the family room sofa, the cushion on the left"): a hint, weaker than a
+# relation said of the target.
+STANDPOINT_NEAR_WEIGHT = 0.4
+# Words of a standpoint that leaves its place.
+_LEAVING = frozenset({"out", "leave", "leaving", "exit", "exiting", "outside"})
+
+
+def _owns_bare_positions(head: NP, standpoint: Landmark, notes: list[str]) -> bool:
+    """Give a position said with no owner ("the cushion at the far left end", "the one
+    on the side") the standpoint's thing as its owner ("when you sit on the sofa, …":
+    the end of the sofa), in place; whether any was given one."""
+    positions = lexicon().position_nouns
+    given = False
+    for k, con in enumerate(list(head.constraints)):
+        if not isinstance(con, RelationConstraint) or con.negated:
+            continue
+        sides = [c for c in con.landmark.constraints if isinstance(c, Superlative)]
+        if con.landmark.target.noun not in positions or len(sides) != len(con.landmark.constraints):
+            continue
+        head.constraints[k] = replace(
+            con, predicate=positions[con.landmark.target.noun], landmark=standpoint,
+            text=f"{con.text} of {standpoint.target.noun}",
+        )  # fmt: skip
+        head.constraints += sides  # "at the far left end": the leftmost one
+        notes.append(f"'{con.text}' is of the standpoint ({standpoint.target.noun})")
+        given = True
+    return given
+
+
+def _near_standpoint(clause: Clause, head: NP, notes: list[str]) -> list[Constraint]:
+    """ "near" the thing the speaker stands at or sits on ("from the family room sofa, the
+    picture to your right", "standing at the sink, the towel on your left"), as a hint
+    for a target the request places by nothing of its own: people point out what is
+    around them. From a door, the room entered instead ("as you walk into the bathroom,
+    …"). None when the standpoint is a room or a place one leaves ("as you come out of
+    the kitchen, …")."""
+    view = clause.viewpoint
+    if view is None or view.landmark.target.layer != "object" or not view.landmark.target.labels:
+        return []
+    if _LEAVING & set(view.text.split()):
+        return []
+    if _owns_bare_positions(head, view.landmark, notes):
+        return []
+    if any(isinstance(c, RelationConstraint) and not c.negated for c in head.constraints):
+        return []
+    if any(c.kind == "room" for c in clause.places + head.places):
+        return []
+    if set(view.landmark.target.labels) & set(head.labels) or head.kind == ONE:
+        return []  # "facing the desks, the third from the left": picked from them
+    if any("door" in label for label in view.landmark.target.labels):
+        # "as you walk into the guest bathroom, the towel on your left": seen from the
+        # way in, not near it, but in the room entered
+        rooms = [c for c in view.landmark.constraints if isinstance(c, RoomConstraint)]
+        if rooms and not rooms[0].negated:
+            notes.append(f"the room entered ({rooms[0].name}) is where to look")
+            return [replace(rooms[0], weight=STANDPOINT_NEAR_WEIGHT)]
+        return []
+    noun = view.landmark.target.noun
+    notes.append(f"the standpoint ({noun}) is near the target")
+    return [
+        RelationConstraint(
+            predicate="near", landmark=view.landmark, weight=STANDPOINT_NEAR_WEIGHT,
+            text=f"near {noun} (where the speaker is)",
+        )
+    ]  # fmt: skip
+
+
 def _one_of_viewed(clause: Clause, notes: list[str]) -> None:
     """ "Facing the monitors, the one on the right": a bare "one" picks from the things
     the speaker faces when they are several of a kind; the head becomes that kind."""
@@ -164,6 +235,7 @@ def assemble(
             notes=tuple(notes),
             viewpoint=clause.viewpoint,
         )
+    standpoint = _near_standpoint(clause, head, notes)
     own = clause.pending + head.constraints
     named = clause.functions + own + clause.implied
     functions = [c for c in named if isinstance(c, FunctionConstraint)]
@@ -196,7 +268,9 @@ def assemble(
         _lift_surface_relations([c for c in own if c.kind not in ("attribute", "function")])
     )
     constraints += clause.excluded_labels
-    places = sorted(clause.places + head.places, key=lambda c: _PLACE_ORDER[c.kind])
+    constraints += [c for c in standpoint if c.kind != "room"]
+    places = [*clause.places, *head.places, *(c for c in standpoint if c.kind == "room")]
+    places = sorted(places, key=lambda c: _PLACE_ORDER[c.kind])
     constraints += _dedupe(places)
     if target.is_empty and head.kind not in (ONE,) and not constraints:
         return ParsedQuery(text=text, reference=reference, no_target_reason=NO_TARGET,

@@ -780,8 +780,20 @@ class ClauseParser(Grammar):
         if tok.has("comma", "and"):
             if moving and self._place_of_it_follows():
                 return False  # "walk to the stool, over by the back door"
+            if moving and self._it_placed_next():
+                return False  # "you can reach the light switch, it's right by the door"
             return self.peek(1) is not None or self.more_sentences
         return tok.has("anaphor", "det", "be", "one") or self.np_start()
+
+    def _it_placed_next(self) -> bool:
+        """Whether "it is" and a place follow the comma here ("…, it's right by the
+        door"): "it" is the thing just named, placed; the phrase named no standpoint."""
+        it, be, after = self.peek(1), self.peek(2), self.peek(3)
+        if it is None or be is None or after is None or it.text not in ("it", "its"):
+            return False
+        if after.text in ("right", "just", "directly", "over") and self.at("prep", k=4):
+            return be.has("be")  # "it's right by the door"
+        return be.has("be") and after.has("prep") and not after.has("det", "one")
 
     def _place_of_it_follows(self) -> bool:
         """Whether all that follows the comma here is a place with no thing of its own

@@ -347,6 +347,8 @@ class Grammar(Cursor):
                 continue
             if tok.tag in ("VBN", "VBD") and run and not tok.has("noun", "unk"):
                 break  # a participle after the noun describes it: "a board covered with"
+            if tok.has("participle") and run:
+                break  # "on the couch watching telly": what is done there, not its name
             if (
                 tok.has("fverb", "overb")
                 and not tok.has("prep", "det", "modal", "be")
@@ -563,6 +565,9 @@ class Grammar(Cursor):
                 and (self.np_start(2) or self.at("placement", k=1))
             ):
                 after_be = True  # "the boxes stacked by the door", "a lamp standing by"
+            elif np.kind == ONE and not after_be and tok.has("adj") and tok.tag in ("VBN", "JJ"):
+                after_be = True  # "not the ones broken", "except the ones marked": its state
+                continue
             elif np.kind == ONE and self._state_of_one(np, tok):
                 after_be = True  # "except the one plugged in by my bed": how it stands
                 continue

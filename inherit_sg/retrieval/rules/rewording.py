@@ -606,3 +606,19 @@ def set_aside_first(sentence: list[Word]) -> list[Word]:
     if k >= len(sentence) or sentence[k].pos != "VERB" or sentence[k].tag != "VB":
         return sentence
     return [*sentence[k:], COMMA, _NOT, *phrase]
+
+
+def without_manner(sentence: list[Word]) -> list[Word]:
+    """ "you can reach the switch without moving the dresser", "get to it without
+    stepping on the rug": "without" and a verb with its object say how something is
+    done, not a part the thing lacks; the phrase is dropped up to the next comma ("the
+    chair without padding" keeps its part)."""
+    for i, word in enumerate(sentence[:-2]):
+        nxt, obj = sentence[i + 1], sentence[i + 2]
+        verb = nxt.tag == "VBG" and nxt.pos == "VERB"
+        if word.text == "without" and verb and obj.pos in ("DET", "PRON", "ADP"):
+            end = next(
+                (k for k in range(i + 1, len(sentence)) if sentence[k] is COMMA), len(sentence)
+            )
+            return [*sentence[:i], *sentence[end:]]
+    return sentence

@@ -576,6 +576,15 @@ def _verb_of_subject(words: list[Word], i: int) -> bool:
     return words[i].dep == "conj" and bool(subjects) and subjects[-1].pos in ("NOUN", "PROPN")
 
 
+def _participle_clause(words: list[Word], i: int) -> bool:
+    """Whether word ``i`` opens a participle clause after a noun ("sitting on the couch
+    watching telly", "the couch facing the tv"), by spaCy's parse, rather than a word of
+    a compound name ("the tv viewing area")."""
+    word = words[i]
+    after_noun = i > 0 and words[i - 1].pos in ("NOUN", "PROPN")
+    return word.tag == "VBG" and word.dep in ("acl", "advcl") and after_noun
+
+
 def tag(words: list[Word]) -> list[Tok]:
     """Tokens for one sentence's ``words`` (output of :func:`.tokens.analyse_text`),
     longest phrases first."""
@@ -616,6 +625,8 @@ def tag(words: list[Word]) -> list[Tok]:
                 if words[i].text in _ONE_WORDS:
                     tok.tags["one"] = True
                     tok.plural = _ONE_WORDS[words[i].text]
+                if _participle_clause(words, i):
+                    tok.tags["participle"] = True  # "the couch watching telly": a clause
                 if tok.has("colour") and _inside_compound(words, i):
                     tok.tags = {"unk": words[i].text}  # "ice cream scoop", not a cream one
                 if tok.has("dir") and _verb_of_person(words, i, ("VBD", "VBN")):

@@ -42,6 +42,40 @@ _NO_SUBJECT_PAST = re.compile(
     r"|(left)\s+(?=(?:my|our|his|her|their)\b))",
     re.IGNORECASE,
 )
+# "the chair that nobody is sitting in", "a desk no one uses": a thing not in use.
+_NOBODY_USES = re.compile(
+    r"(?<=[a-z])\s+(?:(that|which)\s+)?(?:nobody|no one|noone|no-one)(?:\s+is|'s)?\s+"
+    r"(?:using|uses|used|sitting|sits|sat|working)(?:\s+(?:in|on|at))?(?:\s+(?:right\s+)?now)?"
+    r"(?=\s*(?:[,.;!?]|$)|\s+(?:by|near|next|in|on|at|and|but|over|under)\b)",
+    re.IGNORECASE,
+)
+# Misspelt negative contractions: "dosen't", "does'nt", "is'nt".
+_MISSPELT_NOT = re.compile(
+    r"\b(?:(dos[e]?n)|(does|is|are|was|were|did|do|could|would|should|has|have))'nt\b"
+    r"|\bdos[e]?n'?t\b",
+    re.IGNORECASE,
+)
+# "… while I'm on the sofa", "when I'm sitting at my desk": where the speaker is; the
+# thing sought is near it, not on it.
+_WHILE_I_AM_AT = re.compile(
+    r"\b(?:while|when|whilst)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
+    re.IGNORECASE,
+)
+# "no fewer than three pillows", "no more than a metre away": a number, no negation.
+_NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
+# The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
+# sign", "the don't feed the ducks notice".
+_SIGN_WORDS = re.compile(
+    r"\b(?:no|do\s+not|don't|dont)\s+(?:[a-z]+\s+){1,3}?(?=(?:sign|signs|notice|placard|sticker|"
+    r"poster|label|plaque|hanger|tag)\b)",
+    re.IGNORECASE,
+)
+# "a whiteboard with nothing written on it": nothing on it, however it got there.
+_NOTHING_PUT = re.compile(
+    r"\b(nothing|anything)\s+(?:written|drawn|placed|sitting|lying|left|kept|stored|stuck|put|"
+    r"pinned|hanging)\s+(?=(?:on|in|inside)\b)",
+    re.IGNORECASE,
+)
 # "where'd I put it", "what'd you do with it": after a question word, 'd is "did".
 _WH_DID = re.compile(r"\b(where|what|who|how|why|when)'d\b", re.IGNORECASE)
 # A chat mention of whom the message is for ("@robot grab the scissors").
@@ -237,6 +271,18 @@ _CAPITALS_WRITTEN = re.compile(
 )
 
 
+# A word written on a label after the word for labelling: "the box labeled kitchen", "the
+# ones marked for isolation", "tagged as broken".
+_LABEL_WORD = re.compile(
+    r"(?<!\bthe\s)(?<!\ba\s)(?<!\ban\s)(?<!\bany\s)(?<!\ball\s)(?<!\bthose\s)"
+    r"\b(labell?ed|marked|tagged)\s+(?:(?:as|for|with)\s+)?(?:(?:do\s+not|don't|dont|no)\s+)?"
+    r"(?!(?:the|a|an|on|in|by|at|and|or|but|not|with|near|next|under|above|behind|to|from|"
+    r"one|ones|it|them)\b)"
+    r"[a-z0-9]+\b",
+    re.IGNORECASE,
+)
+
+
 def _without_written_words(text: str) -> str:
     """``text`` without the words written on a thing (see ``_CAPITALS_WRITTEN``), so
     that "DO NOT ERASE" rules nothing out; a request typed all in capitals keeps its
@@ -244,6 +290,7 @@ def _without_written_words(text: str) -> str:
     text = _SINGLE_QUOTED.sub(" ", text)
     if not any(c.islower() for c in text):
         return text
+    text = _LABEL_WORD.sub(r"\1", text)
     return _CAPITALS_WRITTEN.sub(lambda m: f"{m.group(1)} ", text)
 
 
@@ -251,6 +298,12 @@ def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
     text = _WH_DID.sub(r"\1 did", text)
+    text = _MISSPELT_NOT.sub(lambda m: f"{m.group(2) or 'does'}n't", text)
+    text = _NOTHING_PUT.sub(r"\1 ", text)
+    text = _WHILE_I_AM_AT.sub("near ", text)
+    text = _NO_FEWER.sub(lambda m: "at least" if m.group(1).lower() != "more" else "at most", text)
+    text = _SIGN_WORDS.sub("", text)
+    text = _NOBODY_USES.sub(lambda m: f" {m.group(1) or 'that'} is not in use", text)
     text = _NO_SUBJECT_PAST.sub(lambda m: f"i {m.group(1) or m.group(2)} ", text)
     text = _WHICH_IS_TARGET.sub(", that is the target", text)
     text = _without_written_words(text)

@@ -181,9 +181,10 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
     going = _destination_relation(obj) if tok.lemma in _PLACING_VERBS and named else None
-    if going is not None and obj is not None:
+    if going is not None and obj is not None and _first_object_word(words) not in _AT_HAND:
         # "put the DVD on the top shelf", "hang the coat on the hook": the thing to move
-        # is sought; where it goes says nothing about where it is now
+        # is sought; where it goes says nothing about where it is now ("put this letter
+        # on the desk": the letter is at hand, the desk is sought)
         obj.constraints = [c for c in obj.constraints if c is not going]
         g.notes.append(
             f"'{tok.text} {obj.noun} … {going.landmark.target.noun}': the thing moved is "
@@ -197,10 +198,11 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         and not purpose
         and not _worn(g)
         and _imperative(g, start)
-        and _first_object_word(words) in PARTICULAR
+        and _first_object_word(words) in PARTICULAR - _AT_HAND
     ):
         # "put my slippers by the bed", "put the mug away", "put the apple from the
-        # counter in the fridge": one particular thing to move, found first
+        # counter in the fridge": one particular thing to move, found first ("put this
+        # letter on the desk": the letter is at hand, where it goes is sought)
         g.notes.append(f"'{tok.text} {obj.noun}': the thing moved is the target")
         return [], obj
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
@@ -290,6 +292,10 @@ def _acts_on_particular(g: Grammar, start: int, obj: NP, words: list[str], aside
         return False
     placed = any(isinstance(c, RelationConstraint) for c in obj.constraints)
     return _first_object_word(words) in PARTICULAR or placed
+
+
+# Words for a thing the speaker has at hand ("put this letter on the desk").
+_AT_HAND = frozenset({"this", "these"})
 
 
 def _first_object_word(words: list[str]) -> str:
