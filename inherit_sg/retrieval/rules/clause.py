@@ -344,7 +344,7 @@ class ClauseParser(Grammar):
                 continue
             if tok.has("seek") and not verbs.is_verb_here(self):
                 self._request_verb()
-            elif verbs.is_verb_here(self):
+            elif verbs.is_verb_here(self) and not self._what_it_has(out, tok):
                 verb_at = self.i
                 keep_out = self._neg and verbs.kept_out(tok)
                 made, candidate = verbs.parse_vp(self)
@@ -425,6 +425,18 @@ class ClauseParser(Grammar):
                     self.notes.append(f"skipped {tok.text!r}")
                 self.advance()
         return out
+
+    def _what_it_has(self, out: Clause, tok: Tok) -> bool:
+        """Whether ``tok`` is "has" after "and", saying what the thing spoken of has ("its
+        under the window and has a blanket folded over one arm", "it stands out a bit and
+        has a globe on top"): a part or a thing on it, not a thing sought."""
+        return (
+            out.head is not None
+            and tok.lemma == "have"
+            and tok.tag == "VBZ"
+            and self.at("and", k=-1)
+            and self.np_start(1)
+        )
 
     def _owner_at(self, k: int) -> tuple[int, str] | None:
         """The owner named at token ``k`` ahead and how many tokens it takes, when the

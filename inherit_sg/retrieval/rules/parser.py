@@ -92,12 +92,16 @@ def _corrects(sentence: list[Word]) -> bool:
     text = " ".join(words)
     if any(text.startswith(c) or text.startswith(f"no {c}") for c in lexicon().corrections):
         return True
-    after = [w for w in sentence[1:4] if w.text != ","]
-    said_no = bool(sentence) and sentence[0].text == "no" and len(sentence) > 1
-    return (
-        said_no and sentence[1] is COMMA and bool(after)
-        and (after[0].pos == "DET" or after[0].text == "not")
-    )  # fmt: skip
+    k = 0
+    while k < len(sentence) and (sentence[k].text in _NO_WORDS or (k and sentence[k] is COMMA)):
+        k += 1  # "no, …", "no no, …", "nope, …"
+    said_no = k > 0 and sentence[k - 1] is COMMA
+    after = [w for w in sentence[k : k + 3] if w.text != ","]
+    return said_no and bool(after) and (after[0].pos == "DET" or after[0].text == "not")
+
+
+# Words that say no before a correction.
+_NO_WORDS = frozenset({"no", "nope", "nah"})
 
 
 def _corrects_details(clause: Clause, more: Clause) -> bool:

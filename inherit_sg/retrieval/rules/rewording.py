@@ -622,3 +622,26 @@ def without_manner(sentence: list[Word]) -> list[Word]:
             )
             return [*sentence[:i], *sentence[end:]]
     return sentence
+
+
+_PRONOUN_SUBJECTS = frozenset({"it", "they", "that", "this", "there"})
+
+
+def without_failed_condition(sentence: list[Word]) -> list[Word]:
+    """ "If it's not on the desk, look in the top drawer for the stapler", "if there
+    isn't one in the kitchen, check the garage": where to look should the first place
+    fail; the condition rules nothing out and is dropped."""
+    if len(sentence) < 4 or sentence[0].text != "if" or sentence[1].text not in _PRONOUN_SUBJECTS:
+        return sentence
+    comma = next((k for k, w in enumerate(sentence) if w is COMMA), None)
+    if comma is None or comma + 1 >= len(sentence):
+        return sentence
+    neg = next((k for k in range(2, comma) if sentence[k].text == "not"), None)
+    if neg is None:
+        return sentence
+    k = neg + 1
+    if k < comma and sentence[k].text in ("one", "any", "anything", "there"):
+        k += 1  # "if there isn't one in the kitchen"
+    if k >= comma or sentence[k].pos != "ADP" or any(w.pos == "VERB" for w in sentence[k:comma]):
+        return sentence  # "if it's not too much trouble could you bring me …": a request
+    return sentence[comma + 1 :]

@@ -22,6 +22,7 @@ from inherit_sg.retrieval.rules.rewording import (
     owner_side,
     set_aside_first,
     whose_as_with,
+    without_failed_condition,
     without_manner,
     without_moved_away,
     without_no_idea,
@@ -66,7 +67,8 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
     sentences = [non_words(without_run_out(without_no_idea(floor_asked(s)))) for s in sentences]
-    sentences = [set_aside_first(without_manner(without_no_longer(s))) for s in sentences]
+    sentences = [without_failed_condition(without_manner(without_no_longer(s))) for s in sentences]
+    sentences = [set_aside_first(s) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [

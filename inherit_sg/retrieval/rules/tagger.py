@@ -368,6 +368,18 @@ def _verb_with_particle(words: list[Word], i: int) -> bool:
     return particle.text in _PARTICLES and after.pos == "DET"
 
 
+def _verb_with_object(words: list[Word], i: int) -> bool:
+    """Whether the sentence-opening word ``i``, which spaCy reads as the root verb with
+    the object that follows ("vacuum the rug", "switch the telly off"), is a command,
+    though the vocabulary knows the word as a thing too (a vacuum, a switch)."""
+    word = words[i]
+    if word.pos != "VERB" or word.tag != "VB" or word.dep != "ROOT" or i + 2 >= len(words):
+        return False
+    if words[i + 1].pos != "DET":
+        return False
+    return any(w.dep == "dobj" for w in words[i + 2 : i + 5])
+
+
 def _verb_for_me(words: list[Word], i: int) -> bool:
     """Whether the clause-opening word ``i``, a verb by spaCy, gives something to the
     speaker ("throw me the ball", "pass us the salt"), though the vocabulary knows it
@@ -667,8 +679,10 @@ def tag(words: list[Word]) -> list[Tok]:
                     for key in ("noun", "unk", "attr"):  # "you saw a drill", "did you notice"
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
-                if first and (_verb_with_particle(words, i) or _verb_for_me(words, i)):
-                    # "Switch on the lamp", "throw me the ball": a command, not a noun
+                commands = _verb_with_particle(words, i) or _verb_for_me(words, i)
+                if first and (commands or _verb_with_object(words, i)):
+                    # "Switch on the lamp", "throw me the ball", "vacuum the rug", "switch
+                    # the telly off": a command, not a noun
                     for key in ("noun", "unk", "attr"):
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)

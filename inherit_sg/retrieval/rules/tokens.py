@@ -61,6 +61,11 @@ _WHILE_I_AM_AT = re.compile(
     r"\b(?:while|when|whilst)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
     re.IGNORECASE,
 )
+# "there's no way to miss the radiator": it cannot be missed, as "you can't miss" says.
+_NO_WAY_TO_MISS = re.compile(
+    r"\b(?:there's|there\s+is|theres)\s+no\s+way\s+(?:to|you\s+(?:can|could|will|'ll))\s+miss\b",
+    re.IGNORECASE,
+)
 # "no fewer than three pillows", "no more than a metre away": a number, no negation.
 _NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
 # The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
@@ -301,6 +306,7 @@ def normalise(text: str) -> str:
     text = _MISSPELT_NOT.sub(lambda m: f"{m.group(2) or 'does'}n't", text)
     text = _NOTHING_PUT.sub(r"\1 ", text)
     text = _WHILE_I_AM_AT.sub("near ", text)
+    text = _NO_WAY_TO_MISS.sub("you can't miss", text)
     text = _NO_FEWER.sub(lambda m: "at least" if m.group(1).lower() != "more" else "at most", text)
     text = _SIGN_WORDS.sub("", text)
     text = _NOBODY_USES.sub(lambda m: f" {m.group(1) or 'that'} is not in use", text)
