@@ -5,6 +5,8 @@ counter's room."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from inherit_sg.retrieval import parse_rules
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from tests.unit.retrieval_fixtures import floor_snapshot
@@ -40,8 +42,16 @@ def test_farthest_compares_the_landmarks_room() -> None:
 
 def test_a_viewpoint_orders_the_candidates_of_its_room() -> None:
     snap = _snap(KITCHEN_AND_BATH)
-    ranked, log = rank(snap, parse_rules("standing at the counter, the stool on the right"))
+    parsed = parse_rules("standing at the counter, the stool on the right")
+    ranked, log = rank(snap, parsed)
+    assert ranked[0].id in {"obj:s1", "obj:s2", "obj:s3"}
+    assert any("viewer: from counter" in line for line in log)
+    by_id = {c.id: c for c in ranked}
+    # the shower stool down the hall is neither in the counter's room nor near it
+    assert all(by_id["obj:s4"].score < by_id[k].score for k in ("obj:s1", "obj:s2", "obj:s3"))
+    # without the parser's hint that the stool is near the counter, the superlative
+    # alone still orders only the stools of the counter's room
+    bare = replace(parsed, constraints=tuple(c for c in parsed.constraints if c.kind != "relation"))
+    ranked, log = rank(snap, bare)
     assert ranked[0].id in {"obj:s1", "obj:s2", "obj:s3"}
     assert any("in the viewpoint's room are ordered" in line for line in log)
-    by_id = {c.id: c for c in ranked}
-    assert by_id["obj:s4"].score < ranked[0].score

@@ -317,6 +317,7 @@ class ClauseParser(Grammar):
     """Parses a whole request (after frame detection) into a :class:`Clause`."""
 
     view_end = -1  # token index just after a viewpoint clause
+    framed = False  # "this is …", "it is the …" said which thing is meant
     more_sentences = False  # sentences follow this one (set by the request parser)
     _after_except = False  # the last negation was "except" / "apart from"
     later = False  # a sentence after the one that named the target (set by the parser)
@@ -518,6 +519,7 @@ class ClauseParser(Grammar):
             return False  # "it is white and has wheels": said of the thing, no new phrase
         words = " ".join(t.text for t in self.toks[self.i : self.i + k + 1])
         self.said_of_it = self.later and tok.text in ("it", "this", "its")
+        self.framed = True
         self.notes.append(f"frame: '{words}' introduces the target")
         self.i += k + 1  # "not" stays: "it's not the white cabinet, it's the brown one"
         return True
@@ -1351,7 +1353,13 @@ class ClauseParser(Grammar):
                     weight=self.weight("relation"), text=f"holds {np.noun}",
                 )
             )  # fmt: skip
-        elif not neg and definite and head.kind in (OBJECT, ROOM) and self._placed_by_head(out, np):
+        elif (
+            not neg
+            and definite
+            and head.kind in (OBJECT, ROOM)
+            and not self.framed  # "This is a whiteboard, the wall next to it has no windows"
+            and self._placed_by_head(out, np)
+        ):
             pass  # "go to the fridge, the cabinet right above it"
         elif head.kind == ANAPHOR:
             head.constraints += np.constraints

@@ -569,6 +569,8 @@ def whose_as_with(sentence: list[Word]) -> list[Word]:
         k += negated
         if sentence[k : k + 2] and [w.text for w in sentence[k : k + 2]] == ["made", "of"]:
             k += 2  # "whose legs are made of metal"
+        while k < len(sentence) and sentence[k].pos == "ADV":
+            k += 1  # "whose door isn't fully closed"
         end = k
         while end < len(sentence) and sentence[end].pos in _QUALITY_POS and end - k < 2:
             end += 1
@@ -645,3 +647,30 @@ def without_failed_condition(sentence: list[Word]) -> list[Word]:
     if k >= comma or sentence[k].pos != "ADP" or any(w.pos == "VERB" for w in sentence[k:comma]):
         return sentence  # "if it's not too much trouble could you bring me …": a request
     return sentence[comma + 1 :]
+
+
+# Verbs by which a "but don't …" after an errand picks among things ("… but don't take
+# the blue one"): the choice is kept.
+_CHOOSING = frozenset({"take", "grab", "bring", "get", "use", "pick", "choose", "fetch", "want"})
+
+
+def without_trailing_caution(sentence: list[Word]) -> list[Word]:
+    """ "bring me the hand mixer but don't unplug the toaster", "grab the vase, but do not
+    wake the baby": a caution after the errand rules nothing out and is dropped; "…
+    but don't take the blue one" still chooses, as "but not the blue one"."""
+    for j, word in enumerate(sentence[:-3]):
+        if word.text != "but" or j < 2:
+            continue
+        k = j + 1
+        if sentence[k].text == "do" and sentence[k + 1].text == "not":
+            k += 2
+        else:
+            continue
+        verb = sentence[k] if k < len(sentence) else None
+        if verb is None or verb.pos != "VERB":
+            return sentence
+        if verb.lemma in _CHOOSING:  # "… but don't take the blue one": "but not the blue one"
+            return [*sentence[: j + 1], _NOT, *sentence[k + 1 :]]
+        end = j - 1 if sentence[j - 1] is COMMA else j
+        return sentence[:end]
+    return sentence

@@ -539,13 +539,20 @@ def _read_in_context(tok: Tok, words: list[Word], i: int, verb: bool) -> None:
 
 def _state_after_be(words: list[Word], i: int) -> bool:
     """Whether word ``i`` is a participle that says a state after "be" ("the radiator
-    that is not painted", "the one that hasn't been cleaned"), not a verb of its own."""
-    if words[i].tag != "VBN" or i == 0 or words[i].lemma in _PLACING_PARTICIPLES:
+    that is not painted", "the one that hasn't been cleaned") or after a noun and "not"
+    ("tv not mounted"), not a verb of its own."""
+    if words[i].tag not in ("VBN", "VBD") or i == 0:
+        return False
+    negated = words[i - 1].text == "not"
+    if words[i].tag == "VBD" and not (negated and i > 1 and words[i - 2].pos in ("NOUN", "PROPN")):
+        return False  # a past tense: "not" before one says a participle ("tv not mounted")
+    if words[i].lemma in _PLACING_PARTICIPLES and not negated:
         return False  # "where is the kit kept", "has it been moved": where, not a look
     j = i - 1
     while j > 0 and (words[j].text == "not" or words[j].pos == "ADV"):
         j -= 1
-    return words[j].lemma == "be"
+    # "the tv that is not mounted", and in notes "tv not mounted"
+    return words[j].lemma == "be" or (negated and words[j].pos in ("NOUN", "PROPN"))
 
 
 def _comparative_as_noun(words: list[Word], i: int) -> bool:

@@ -66,6 +66,37 @@ _NO_WAY_TO_MISS = re.compile(
     r"\b(?:there's|there\s+is|theres)\s+no\s+way\s+(?:to|you\s+(?:can|could|will|'ll))\s+miss\b",
     re.IGNORECASE,
 )
+# A double negative of having ("the chair that dont have no arms", "hasnt got no
+# cushion"): it has none.
+_DOUBLE_NO = re.compile(
+    r"\b(?:don't|dont|doesn't|doesnt|hasn't|hasnt|haven't|havent|ain't|aint)\s+"
+    r"(?:have|has|got)\s+(?:got\s+)?no\b",
+    re.IGNORECASE,
+)
+# "not just long", "not only a lamp but also …", "not bad looking": no negation.
+_NOT_ONLY = re.compile(r"\bnot\s+(?:just|only|merely|simply)\b", re.IGNORECASE)
+_NOT_BAD = re.compile(r"\bnot\s+(?:too\s+|that\s+|so\s+)?bad\b", re.IGNORECASE)
+# "not too far above the couch", "not that far from the door": near it.
+_NOT_FAR = re.compile(
+    r"\bnot\s+(?:too|that|so|very)\s+far\s+(?:away\s+)?(?:from|above|below|over|under)\b",
+    re.IGNORECASE,
+)
+# "I not know the english name": a learner's "I don't know".
+_I_NOT_KNOW = re.compile(r"\bi\s+(?:not|no)\s+know\b", re.IGNORECASE)
+# "the no-slip mat": one adjective, as "non-slip" is.
+_NO_HYPHEN = re.compile(r"\bno-(?=[a-z])", re.IGNORECASE)
+# "the shoe that's missing its lace": without it ("my missing keys" stays).
+_MISSING_PART = re.compile(
+    r"\bmissing\s+(?=(?:its|a|an|the|one|some|any|his|her|their|both)\b)", re.IGNORECASE
+)
+# "no taller than the mug next to it": a size compared with a thing there, which is near;
+# "no bigger than a shoebox": a size compared with a thing that is not there (dropped).
+# Neither rules anything out.
+_NO_COMPARED = re.compile(
+    r"\bno\s+(?:bigger|larger|smaller|taller|shorter|wider|higher|longer|heavier|thicker)"
+    r"\s+than\s+(?:(the|this|that|these|those|my|your)\b|an?\s+[a-z]+)",
+    re.IGNORECASE,
+)
 # "no fewer than three pillows", "no more than a metre away": a number, no negation.
 _NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
 # The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
@@ -307,6 +338,14 @@ def normalise(text: str) -> str:
     text = _NOTHING_PUT.sub(r"\1 ", text)
     text = _WHILE_I_AM_AT.sub("near ", text)
     text = _NO_WAY_TO_MISS.sub("you can't miss", text)
+    text = _DOUBLE_NO.sub("has no", text)
+    text = _NOT_ONLY.sub("", text)
+    text = _NOT_BAD.sub("good", text)
+    text = _NOT_FAR.sub("near", text)
+    text = _I_NOT_KNOW.sub("i don't know", text)
+    text = _NO_HYPHEN.sub("non-", text)
+    text = _MISSING_PART.sub("without ", text)
+    text = _NO_COMPARED.sub(lambda m: f"near {m.group(1)}" if m.group(1) else "", text)
     text = _NO_FEWER.sub(lambda m: "at least" if m.group(1).lower() != "more" else "at most", text)
     text = _SIGN_WORDS.sub("", text)
     text = _NOBODY_USES.sub(lambda m: f" {m.group(1) or 'that'} is not in use", text)
