@@ -25,8 +25,9 @@ A qualifier in the request's words (``[qualifiers]`` in ``rooms.toml``) then say
 of the matched rooms is meant (:func:`qualify_rooms`): "the master bathroom" / "the en
 suite" is one that opens onto a bedroom, "the guest bathroom" one that does not; "the
 master bedroom" the one with its own bathroom (else the largest), "the spare bedroom"
-another. Matched rooms that are not the one meant keep :data:`QUALIFIER_MISS` of their
-similarity, when the map has both kinds.
+another; "the big bathroom" / "the main bedroom" the largest of the rooms matched in
+full, "the small bathroom" the smallest. Matched rooms that are not the one meant keep
+:data:`QUALIFIER_MISS` of their similarity, when the map has both kinds.
 """
 
 from __future__ import annotations
@@ -347,10 +348,27 @@ def _private_rooms(rooms: list[str], rtype: str, snap: MapSnapshot) -> set[str]:
     return {max(sized)[1]} if sized else set()
 
 
+def _by_size(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
+    """Lower the fully matched rooms other than the largest ("the big bathroom", "the
+    main bedroom") or the smallest ("the small bathroom") one, by floor area, to
+    :data:`QUALIFIER_MISS` of their similarity; only rooms matched at full strength (by
+    their label or best type) are compared, and nothing changes with fewer than two."""
+    full = [r for r, (v, _) in out.items() if r in snap.rooms and v >= LABEL_LO]
+    sized = sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
+    if len(sized) < 2:
+        return
+    area, meant = sized[-1] if qualifier == "largest" else sized[0]
+    word = "largest" if qualifier == "largest" else "smallest"
+    _lower_unmeant(out, full, {meant}, f"the {word} one is meant ({area:.1f} m²)")
+
+
 def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -> None:
-    """Lower the matched rooms that are not the one ``qualifier`` ("private" or
-    "shared") means to :data:`QUALIFIER_MISS` of their similarity, in place; nothing
-    changes unless the matched rooms include both kinds."""
+    """Lower the matched rooms that are not the one ``qualifier`` ("private", "shared",
+    "largest" or "smallest") means to :data:`QUALIFIER_MISS` of their similarity, in
+    place; nothing changes unless the matched rooms include both kinds."""
+    if qualifier in ("largest", "smallest"):
+        _by_size(out, qualifier, snap)
+        return
     matched = sorted(r for r in out if r in snap.rooms)
     private = _private_rooms(matched, rtype, snap)
     meant = private if qualifier == "private" else set(matched) - private

@@ -320,13 +320,17 @@ def _room_name_in(phrase: str) -> str | None:
     return None
 
 
+# Kinds of room qualifier: whose the room is, and which by size ("the big bathroom").
+QUALIFIER_KINDS = ("private", "shared", "largest", "smallest")
+
+
 @lru_cache(maxsize=1)
 def _qualifiers() -> dict[str, str]:
     data = load_table("rooms").get("qualifiers", {})
     if not isinstance(data, dict):
         raise VocabularyError(f"{_FILE}: 'qualifiers' must be a table")
     out: dict[str, str] = {}
-    for kind in ("private", "shared"):
+    for kind in QUALIFIER_KINDS:
         for phrase in string_list(data, kind, f"{_FILE} [qualifiers]"):
             out[" ".join(phrase.lower().split())] = kind
     return out
@@ -334,8 +338,9 @@ def _qualifiers() -> dict[str, str]:
 
 def room_qualifier(phrase: str) -> str | None:
     """Which of several rooms of a type ``phrase`` means: "private" ("master bathroom",
-    "en suite"), "shared" ("guest bathroom", "spare room") or None, by the words of
-    ``[qualifiers]`` in ``rooms.toml`` (the longest phrase found wins)."""
+    "en suite"), "shared" ("guest bathroom", "spare room"), "largest" ("the big
+    bathroom", "the main bedroom"), "smallest" ("the small bathroom") or None, by the
+    words of ``[qualifiers]`` in ``rooms.toml`` (the longest phrase found wins)."""
     text = " " + " ".join(_words(phrase)) + " "
     found = [(len(q), kind) for q, kind in _qualifiers().items() if f" {q} " in text]
     return max(found)[1] if found else None

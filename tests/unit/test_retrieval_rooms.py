@@ -3,6 +3,7 @@ types, then embeddings (retrieval/room_match.py through ``resolve_matches``)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from inherit_sg.model import (
@@ -12,6 +13,7 @@ from inherit_sg.model import (
     FloorNode,
     Layer,
     ObjectNode,
+    RoomMask,
     RoomNode,
     SceneGraph,
     make_id,
@@ -223,6 +225,41 @@ def test_the_master_bedroom_is_the_one_with_its_own_bathroom() -> None:
     assert spare["room:s"][0] == sure and spare["room:m"][0] < sure
 
 
+def _sized_bathrooms() -> MapSnapshot:
+    """Bathrooms b (2 × 4 m), s (1.5 × 2 m) and w (a toilet, 1 × 1.5 m), by their masks."""
+    g = _graph({"b": ("bathroom", (("bathroom", 0.9),)), "s": ("bathroom", (("bathroom", 0.9),)),
+                "w": ("toilet", TOILET)})  # fmt: skip
+    for key, (width, depth) in {"b": (2.0, 4.0), "s": (1.5, 2.0), "w": (1.0, 1.5)}.items():
+        room = g.get(make_id(Layer.ROOM, key))
+        assert isinstance(room, RoomNode)
+        cells = np.ones((round(depth / 0.1), round(width / 0.1)), dtype=bool)
+        room.mask = RoomMask(room.position[0], 0.0, 0.1, cells)
+    return build_snapshot(g, (1,))
+
+
+def test_the_big_and_the_small_bathroom_are_told_apart_by_floor_area() -> None:
+    snap = _sized_bathrooms()
+    sure = label_sim(0.9)
+    big = _room(snap, "bathroom", "large bathroom")
+    assert big["room:b"][0] == sure
+    assert big["room:s"][0] == pytest.approx(QUALIFIER_MISS * sure)
+    assert "the largest one is meant (8.0 m²)" in big["room:s"][1]
+    small = _room(snap, "bathroom", "small bathroom")
+    assert small["room:s"][0] == sure and small["room:b"][0] < sure
+    # the toilet matches as a related type only, so it is not the small bathroom
+    assert small["room:w"][0] < sure and "smallest" not in small["room:w"][1]
+    assert _room(snap, "bathroom", "main bathroom")["room:s"][0] < sure
+
+
+def test_the_small_bathroom_is_read_from_the_request() -> None:
+    from inherit_sg.retrieval import parse_rules
+
+    parsed = parse_rules("is there a bottle of anything in the small bathroom?")
+    room = next(c for c in parsed.constraints if isinstance(c, RoomConstraint))
+    assert (room.type, room.name) == ("bathroom", "small bathroom")
+    assert room_qualifier(room.name) == "smallest"
+
+
 def test_room_qualifier_words() -> None:
     assert room_qualifier("master bathroom") == "private"
     assert room_qualifier("the en-suite") == "private"
@@ -230,3 +267,6 @@ def test_room_qualifier_words() -> None:
     assert room_qualifier("spare room") == "shared"
     assert room_qualifier("bathroom") is None
     assert room_qualifier("mastermind room") is None
+    assert room_qualifier("the big bathroom") == "largest"
+    assert room_qualifier("main bedroom") == "largest"
+    assert room_qualifier("small bathroom") == "smallest"

@@ -412,10 +412,26 @@ class Grammar(Cursor):
         else:
             np.labels = [_open_label(run)]
         if np.kind == OBJECT and len(run) > 1:
+            self._part_of_owner(np, run)
             self.notes.append(f"compound noun {np.noun!r} → label {'/'.join(np.labels)}")
         if np.kind == OBJECT:
             self._room_modifier(np, run)
             self._place_modifier(np, run)
+
+    @staticmethod
+    def _part_of_owner(np: NP, run: list[Tok]) -> None:
+        """ "the oven door", "the fridge door", "the cabinet door under the sink": a part
+        named with the thing it belongs to may be mapped only as that thing, so the
+        thing's kind is a name of the target too (a map that holds cabinet doors of their
+        own still finds the door)."""
+        owner, part = run[-2], run[-1]
+        if not owner.has("noun") or owner.has("room"):
+            return
+        word = part.lemma or part.text
+        if word not in _BUILT_IN_PARTS:
+            return  # "the telly remote", "the dog leash": things of their own
+        owners = [label for label in owner.tags["noun"] if object_vocab.is_part(word, label)]
+        np.labels += [label for label in owners if label not in np.labels]
 
     def _room_modifier(self, np: NP, run: list[Tok]) -> None:
         """A room word before the head noun says where the thing is: "the bedroom TV",
@@ -1560,8 +1576,18 @@ class Grammar(Cursor):
 
     @staticmethod
     def _room(np: NP, neg: bool, text: str, stress: str | None) -> RoomConstraint:
+        # "the small bathroom", "the big bedroom": the size says which room of the type
+        size = next(
+            (
+                c.value
+                for c in np.constraints
+                if isinstance(c, AttributeConstraint) and c.key == "size" and not c.negated
+            ),
+            None,
+        )
+        name = f"{size} {np.noun}" if size in ("small", "large") and np.noun else np.noun
         return RoomConstraint(
-            type=np.room_type, name=np.noun, negated=neg, text=text,
+            type=np.room_type, name=name, negated=neg, text=text,
             weight=weighted("room", stress), beside=np.beside,
         )  # fmt: skip
 
@@ -1572,6 +1598,11 @@ class Grammar(Cursor):
 
 
 _CENTRE_WORDS = frozenset({"center", "centre", "middle"})
+# Parts built into a thing, which a map rarely holds apart from it ("the oven door").
+_BUILT_IN_PARTS = frozenset(
+    {"door", "lid", "handle", "knob", "leg", "arm", "armrest", "backrest", "seat", "screen",
+     "drawer", "panel", "button", "dial", "hinge", "cushion"}
+)  # fmt: skip
 _DO = frozenset({"do", "does", "did"})
 
 

@@ -205,7 +205,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         # letter on the desk": the letter is at hand, where it goes is sought)
         g.notes.append(f"'{tok.text} {obj.noun}': the thing moved is the target")
         return [], obj
-    destination = _destination(obj) if tok.lemma in _PLACING_VERBS else None
+    at_hand = _first_object_word(words) in _AT_HAND  # "rinse this in the kitchen sink"
+    destination = _destination(obj) if tok.lemma in _PLACING_VERBS or at_hand else None
     if (
         destination is not None
         and obj is not None
