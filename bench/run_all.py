@@ -34,10 +34,14 @@ RESULTS = ROOT / "bench" / "results" / "run_all"
 SCALE_JSON = ROOT / "bench" / "results" / "retrieval.json"
 PARSE_JSON = ROOT / "bench" / "results" / "parse.json"
 MP3D_REQUESTS_JSON = ROOT / "bench" / "results" / "mp3d_requests.json"
-MP3D_INDEPENDENT = ROOT / "bench" / "data" / "mp3d_requests_independent.jsonl"
-MP3D_INDEPENDENT_JSON = ROOT / "bench" / "results" / "mp3d_requests_independent.json"
-MP3D_THIRD = ROOT / "bench" / "data" / "mp3d_requests_third.jsonl"
-MP3D_THIRD_JSON = ROOT / "bench" / "results" / "mp3d_requests_third.json"
+# Further request sets for the MP3D house, each by its own author: page key -> file stem
+# (bench/data/<stem>.jsonl, bench/results/<stem>.json).
+MP3D_MORE = {
+    "mp3d_independent": "mp3d_requests_independent",
+    "mp3d_third": "mp3d_requests_third",
+    "mp3d_fourth": "mp3d_requests_fourth",
+    "mp3d_fifth": "mp3d_requests_fifth",
+}
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
 DOCS = ROOT / "docs"
@@ -190,8 +194,7 @@ def render(docs: list[dict[str, Any]]) -> Path:
             ("parse", PARSE_JSON),
             ("probe", RESULTS.parent / "probe_requests.json"),
             ("mp3d", MP3D_REQUESTS_JSON),
-            ("mp3d_independent", MP3D_INDEPENDENT_JSON),
-            ("mp3d_third", MP3D_THIRD_JSON),
+            *((key, RESULTS.parent / f"{stem}.json") for key, stem in MP3D_MORE.items()),
             ("mp3d_rooms", MP3D_ROOMS_JSON),
             ("mp3d_objects", MP3D_OBJECTS_JSON),
             ("fresh_seeds", RESULTS.parent / "fresh_seeds.json"),
@@ -209,8 +212,8 @@ def render(docs: list[dict[str, Any]]) -> Path:
 
 
 def run_request_sets(work: Path) -> None:
-    """The parser's development set and probe sets, and the three MP3D human-written
-    request sets (each script writes its JSON under bench/results/)."""
+    """The parser's development set and probe sets, and the MP3D human-written request
+    sets (each script writes its JSON under bench/results/)."""
     print("== request parsing (bench/parse.py --dev)", flush=True)
     subprocess.run([sys.executable, str(ROOT / "bench" / "parse.py"), "--dev"], check=True)
     print("== probe request sets (bench/probe_requests.py)", flush=True)
@@ -221,22 +224,16 @@ def run_request_sets(work: Path) -> None:
         subprocess.run(
             [sys.executable, str(script), "--work", str(work / "mp3d-requests")], check=True
         )
-        print("== MP3D independent requests (bench/mp3d_requests.py --requests …)", flush=True)
-        subprocess.run(
-            [
-                sys.executable, str(script), "--work", str(work / "mp3d-requests"),
-                "--requests", str(MP3D_INDEPENDENT), "--out", str(MP3D_INDEPENDENT_JSON),
-            ],
-            check=True,
-        )  # fmt: skip
-        print("== MP3D blind third requests (bench/mp3d_requests.py --requests …)", flush=True)
-        subprocess.run(
-            [
-                sys.executable, str(script), "--work", str(work / "mp3d-requests"),
-                "--requests", str(MP3D_THIRD), "--out", str(MP3D_THIRD_JSON),
-            ],
-            check=True,
-        )  # fmt: skip
+        for stem in MP3D_MORE.values():
+            print(f"== MP3D requests, {stem} (bench/mp3d_requests.py --requests …)", flush=True)
+            subprocess.run(
+                [
+                    sys.executable, str(script), "--work", str(work / "mp3d-requests"),
+                    "--requests", str(ROOT / "bench" / "data" / f"{stem}.jsonl"),
+                    "--out", str(RESULTS.parent / f"{stem}.json"),
+                ],
+                check=True,
+            )  # fmt: skip
 
 
 def main() -> None:
