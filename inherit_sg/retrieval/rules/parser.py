@@ -395,6 +395,9 @@ def parse_uncached(text: str) -> ParsedQuery:
             clause.head.labels = list(more.head.labels)
             clause.head.words = list(more.head.words)
             clause.head.plural = more.head.plural
+            # "… the sofa i need is the one with no pillows on it": what it says of it
+            clause.head.constraints += more.head.constraints
+            clause.places += more.places
             continue
         if not correcting and (chosen or n == pointed) and _another_thing(clause, more):
             # "find the copier first. the recycling bin on its left side is the one"

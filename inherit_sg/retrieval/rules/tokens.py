@@ -97,6 +97,17 @@ _NO_COMPARED = re.compile(
     r"\s+than\s+(?:(the|this|that|these|those|my|your)\b|an?\s+[a-z]+)",
     re.IGNORECASE,
 )
+# "no other chair in the room is this tall": the tallest chair.
+_NO_OTHER_AS = re.compile(
+    r"\bno\s+other\s+([a-z]+(?:\s+[a-z]+)?)\s+(?:(?:in|on)\s+(?:the|this)\s+[a-z]+\s+)?"
+    r"(?:is|are)\s+(?:this|as|so|that)\s+(tall|big|large|small|long|wide|high|short)"
+    r"\b(?:\s+as\s+(?:this\s+one|this|it))?",
+    re.IGNORECASE,
+)
+_MOST = {
+    "tall": "tallest", "big": "biggest", "large": "largest", "small": "smallest",
+    "long": "longest", "wide": "widest", "high": "highest", "short": "shortest",
+}  # fmt: skip
 # "no fewer than three pillows", "no more than a metre away": a number, no negation.
 _NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
 # The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
@@ -339,6 +350,7 @@ def normalise(text: str) -> str:
     text = _WHILE_I_AM_AT.sub("near ", text)
     text = _NO_WAY_TO_MISS.sub("you can't miss", text)
     text = _DOUBLE_NO.sub("has no", text)
+    text = _NO_OTHER_AS.sub(lambda m: f"the {_MOST[m.group(2).lower()]} {m.group(1)}", text)
     text = _NOT_ONLY.sub("", text)
     text = _NOT_BAD.sub("good", text)
     text = _NOT_FAR.sub("near", text)
