@@ -674,3 +674,24 @@ def without_trailing_caution(sentence: list[Word]) -> list[Word]:
         end = j - 1 if sentence[j - 1] is COMMA else j
         return sentence[:end]
     return sentence
+
+
+def which_of_is(sentence: list[Word]) -> list[Word]:
+    """ "which of the two couches in the family room is the sofa bed" as "the sofa bed in
+    the family room": the thing named after "is" is sought among those named first."""
+    texts = [w.text for w in sentence]
+    if texts[:2] != ["which", "of"]:
+        return sentence
+    k = next((j for j in range(3, len(sentence) - 2) if sentence[j].lemma == "be"), None)
+    if k is None or sentence[k + 1].pos != "DET":
+        return sentence
+    picked = sentence[k + 1 :]
+    if not any(w.pos in ("NOUN", "PROPN") for w in picked) or any(w.pos == "VERB" for w in picked):
+        return sentence
+    named = " ".join(w.text for w in picked if w.pos in ("NOUN", "PROPN"))
+    if canonical_label(named) is None:
+        return sentence  # "which of the bottles … is the whisky": what is in it, not a kind
+    place = next(
+        (j for j in range(2, k) if sentence[j].pos == "ADP" and sentence[j].text != "of"), k
+    )
+    return [*picked, *sentence[place:k]]

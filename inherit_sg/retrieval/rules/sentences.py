@@ -21,6 +21,7 @@ from inherit_sg.retrieval.rules.rewording import (
     only_thing,
     owner_side,
     set_aside_first,
+    which_of_is,
     whose_as_with,
     without_failed_condition,
     without_manner,
@@ -69,7 +70,7 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     (see the module docstring)."""
     sentences = [non_words(without_run_out(without_no_idea(floor_asked(s)))) for s in sentences]
     sentences = [without_failed_condition(without_manner(without_no_longer(s))) for s in sentences]
-    sentences = [set_aside_first(without_trailing_caution(s)) for s in sentences]
+    sentences = [set_aside_first(without_trailing_caution(which_of_is(s))) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [
