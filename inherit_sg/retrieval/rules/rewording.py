@@ -614,8 +614,12 @@ def without_manner(sentence: list[Word]) -> list[Word]:
     """ "you can reach the switch without moving the dresser", "get to it without
     stepping on the rug": "without" and a verb with its object say how something is
     done, not a part the thing lacks; the phrase is dropped up to the next comma ("the
-    chair without padding" keeps its part)."""
-    for i, word in enumerate(sentence[:-2]):
+    chair without padding" keeps its part). "without it" names no part either."""
+    for i, word in enumerate(sentence[:-1]):
+        if word.text == "without" and sentence[i + 1].text in ("it", "them"):
+            return [*sentence[:i], *sentence[i + 2 :]]  # "i cant sleep without it"
+        if i + 2 >= len(sentence):
+            break
         nxt, obj = sentence[i + 1], sentence[i + 2]
         verb = nxt.tag == "VBG" and nxt.pos == "VERB"
         if word.text == "without" and verb and obj.pos in ("DET", "PRON", "ADP"):

@@ -108,6 +108,26 @@ _MOST = {
     "tall": "tallest", "big": "biggest", "large": "largest", "small": "smallest",
     "long": "longest", "wide": "widest", "high": "highest", "short": "shortest",
 }  # fmt: skip
+# "no other chair in the room is red": the red chair (a colour or material only).
+_NO_OTHER_IS = re.compile(
+    r"\bno\s+other\s+([a-z]+)\s+(?:(?:in|on)\s+(?:the|this)\s+[a-z]+\s+)?(?:is|are)\s+([a-z]+)\b",
+    re.IGNORECASE,
+)
+# Remarks that rule nothing out: "unlike the other one, …", "you won't need a key, …".
+_UNLIKE_OTHER = re.compile(r"\bunlike\s+the\s+other\s+(?:one|ones|[a-z]+)\s*,?", re.IGNORECASE)
+_WONT_NEED = re.compile(
+    r"\b(?:you|we|u)\s+(?:won't|will\s+not|wont|don't|do\s+not|dont)\s+need\s+[^,.;!?]*[,.;!?]",
+    re.IGNORECASE,
+)
+# A title or name after "titled" / "called": "the book titled no country for old men".
+_TITLED_NO = re.compile(
+    r"\b(titled|called|named|entitled)\s+(?:no|not|don't|do\s+not)\b", re.IGNORECASE
+)
+# Words printed on a thing before its name: "the no shoes doormat", "a do not disturb
+# hanger" (the thing named must be one the vocabulary knows).
+_PRINTED_NO = re.compile(
+    r"\b(the|a|an)\s+(?:no|do\s+not|don't|dont)\s+([a-z]+)\s+([a-z]+)\b", re.IGNORECASE
+)
 # "no fewer than three pillows", "no more than a metre away": a number, no negation.
 _NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
 # The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
@@ -258,6 +278,22 @@ def _without_weekday(match: re.Match[str]) -> str:
 _SHADE_COMPARATIVES = frozenset({"lighter", "darker", "brighter", "paler", "deeper"})
 
 
+def _the_only_one(match: re.Match[str]) -> str:
+    """ "no other chair is red" → "the red chair", for a colour or a material; other
+    words ("no other chair is there") stay."""
+    kind, word = match.group(1), match.group(2)
+    return f"the {word} {kind}" if colour_or_material(word.lower()) else match.group(0)
+
+
+def _printed_words(match: re.Match[str]) -> str:
+    """ "the no shoes doormat" → "the doormat" when the last word names a thing the
+    vocabulary knows; other phrases stay."""
+    from inherit_sg.vocab.objects import canonical_label
+
+    det, thing = match.group(1), match.group(3)
+    return f"{det} {thing}" if canonical_label(thing.lower()) is not None else match.group(0)
+
+
 def _colour_said(match: re.Match[str]) -> str:
     """ "cream colour" → "cream", "light blue coloured" → "light blue": the colour itself;
     a word that names no colour ("rust-coloured") says one all the same, as an -ish hedge
@@ -350,6 +386,11 @@ def normalise(text: str) -> str:
     text = _WHILE_I_AM_AT.sub("near ", text)
     text = _NO_WAY_TO_MISS.sub("you can't miss", text)
     text = _DOUBLE_NO.sub("has no", text)
+    text = _NO_OTHER_IS.sub(_the_only_one, text)
+    text = _UNLIKE_OTHER.sub("", text)
+    text = _WONT_NEED.sub("", text)
+    text = _TITLED_NO.sub(r"\1", text)
+    text = _PRINTED_NO.sub(_printed_words, text)
     text = _NO_OTHER_AS.sub(lambda m: f"the {_MOST[m.group(2).lower()]} {m.group(1)}", text)
     text = _NOT_ONLY.sub("", text)
     text = _NOT_BAD.sub("good", text)
