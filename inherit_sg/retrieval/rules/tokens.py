@@ -32,7 +32,8 @@ _GLUED_STOP = re.compile(r"(?<=[a-z])([.!?;,])(?=[A-Za-z])")
 _SPACES = re.compile(r"\s+")
 # "… a black game console which is the target": the thing just named is the one meant.
 _WHICH_IS_TARGET = re.compile(
-    r",?\s+(?:which|that)\s+is\s+(?:the|our)\s+(?:target|object)(?:\s+described)?\b", re.I
+    r"(?<!\s),?\s+(?:which|that)\s+is\s+(?:the|our)\s+(?:target|object)(?:\s+described)?\b",
+    re.I,  # (the look-behind starts a match only where a run of spaces starts)
 )
 # A diary-style past with no subject at the start: "lost one earbud somewhere …",
 # "dropped the remote behind the couch", "left my phone in the car" (with "I" added).
