@@ -1394,7 +1394,39 @@ class Grammar(Cursor):
                 self._with_constraint(np, thing, neg, tok.text, predicate, after if on_it else None)
             )
             np.places += thing.places
+        if on_it and np.kind in (OBJECT, ONE):
+            self._more_placed_with(np, neg, tok.text)
         return True
+
+    def _more_placed_with(self, np: NP, neg: bool, word: str) -> None:
+        """Further things a "with" phrase places by the target after the first one's place
+        ("the sink with the mirror over it and the two baskets underneath", "… and a
+        lamp beside it"): each a relation of the target, not a second target."""
+        while self.at("and") and self.np_start(1) and not self.at("anaphor", k=1):
+            snap = self.state()
+            self.advance()
+            thing = self._with_object()
+            where = self.peek()
+            if thing is None or thing.kind != OBJECT or not thing.labels or where is None:
+                self.restore(snap)
+                return
+            if where.has("prep") and self.at("anaphor", k=1):
+                self.i += 2
+                prep = str(where.tags["prep"])
+            elif where.text in _UNDERNEATH:
+                self.i += 1
+                prep = "under"
+            else:
+                self.restore(snap)
+                return
+            predicate = lexicon().with_inverse.get(prep, prep)
+            np.constraints.append(
+                RelationConstraint(
+                    predicate=predicate, landmark=thing.landmark(), negated=neg,
+                    weight=self.weight("relation"), text=f"{word} {thing.noun}",
+                )
+            )  # fmt: skip
+            np.places += thing.places
 
     def _empty_of_things(self) -> bool:
         """ "with nothing (else) on it": read and set aside with a note. Whether it rules
@@ -1598,6 +1630,8 @@ class Grammar(Cursor):
 
 
 _CENTRE_WORDS = frozenset({"center", "centre", "middle"})
+# Words that place a thing under the one spoken of ("… and two baskets underneath").
+_UNDERNEATH = frozenset({"underneath", "beneath", "below", "under"})
 # Parts built into a thing, which a map rarely holds apart from it ("the oven door").
 _BUILT_IN_PARTS = frozenset(
     {"door", "lid", "handle", "knob", "leg", "arm", "armrest", "backrest", "seat", "screen",
