@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 from inherit_sg.errors import QueryTextError
 from inherit_sg.nlp import analyse, known_lemma, lemma_phrase, singular_read_as_plural
+from inherit_sg.retrieval.rules.sayings import plain_sayings
 
 MAX_QUERY_CHARS = 5000
 
@@ -41,107 +42,6 @@ _NO_SUBJECT_PAST = re.compile(
     r"^(?:(lost|dropped|misplaced|forgot|stashed|hid|moved|tossed|threw)\s+"
     r"(?=(?:my|the|a|an|one|our|his|her|their|some|both)\b)"
     r"|(left)\s+(?=(?:my|our|his|her|their)\b))",
-    re.IGNORECASE,
-)
-# "the chair that nobody is sitting in", "a desk no one uses": a thing not in use.
-_NOBODY_USES = re.compile(
-    r"(?<=[a-z])\s+(?:(that|which)\s+)?(?:nobody|no one|noone|no-one)(?:\s+is|'s)?\s+"
-    r"(?:using|uses|used|sitting|sits|sat|working)(?:\s+(?:in|on|at))?(?:\s+(?:right\s+)?now)?"
-    r"(?=\s*(?:[,.;!?]|$)|\s+(?:by|near|next|in|on|at|and|but|over|under)\b)",
-    re.IGNORECASE,
-)
-# Misspelt negative contractions: "dosen't", "does'nt", "is'nt".
-_MISSPELT_NOT = re.compile(
-    r"\b(?:(dos[e]?n)|(does|is|are|was|were|did|do|could|would|should|has|have))'nt\b"
-    r"|\bdos[e]?n'?t\b",
-    re.IGNORECASE,
-)
-# "… while I'm on the sofa", "when I'm sitting at my desk": where the speaker is; the
-# thing sought is near it, not on it.
-_WHILE_I_AM_AT = re.compile(
-    r"\b(?:while|when|whilst)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
-    re.IGNORECASE,
-)
-# "there's no way to miss the radiator": it cannot be missed, as "you can't miss" says.
-_NO_WAY_TO_MISS = re.compile(
-    r"\b(?:there's|there\s+is|theres)\s+no\s+way\s+(?:to|you\s+(?:can|could|will|'ll))\s+miss\b",
-    re.IGNORECASE,
-)
-# A double negative of having ("the chair that dont have no arms", "hasnt got no
-# cushion"): it has none.
-_DOUBLE_NO = re.compile(
-    r"\b(?:don't|dont|doesn't|doesnt|hasn't|hasnt|haven't|havent|ain't|aint)\s+"
-    r"(?:have|has|got)\s+(?:got\s+)?no\b",
-    re.IGNORECASE,
-)
-# "not just long", "not only a lamp but also …", "not bad looking": no negation.
-_NOT_ONLY = re.compile(r"\bnot\s+(?:just|only|merely|simply)\b", re.IGNORECASE)
-_NOT_BAD = re.compile(r"\bnot\s+(?:too\s+|that\s+|so\s+)?bad\b", re.IGNORECASE)
-# "not too far above the couch", "not that far from the door": near it.
-_NOT_FAR = re.compile(
-    r"\bnot\s+(?:too|that|so|very)\s+far\s+(?:away\s+)?(?:from|above|below|over|under)\b",
-    re.IGNORECASE,
-)
-# "I not know the english name": a learner's "I don't know".
-_I_NOT_KNOW = re.compile(r"\bi\s+(?:not|no)\s+know\b", re.IGNORECASE)
-# "the no-slip mat": one adjective, as "non-slip" is.
-_NO_HYPHEN = re.compile(r"\bno-(?=[a-z])", re.IGNORECASE)
-# "the shoe that's missing its lace": without it ("my missing keys" stays).
-_MISSING_PART = re.compile(
-    r"\bmissing\s+(?=(?:its|a|an|the|one|some|any|his|her|their|both)\b)", re.IGNORECASE
-)
-# "no taller than the mug next to it": a size compared with a thing there, which is near;
-# "no bigger than a shoebox": a size compared with a thing that is not there (dropped).
-# Neither rules anything out.
-_NO_COMPARED = re.compile(
-    r"\bno\s+(?:bigger|larger|smaller|taller|shorter|wider|higher|longer|heavier|thicker)"
-    r"\s+than\s+(?:(the|this|that|these|those|my|your)\b|an?\s+[a-z]+)",
-    re.IGNORECASE,
-)
-# "no other chair in the room is this tall": the tallest chair.
-_NO_OTHER_AS = re.compile(
-    r"\bno\s+other\s+([a-z]+(?:\s+[a-z]+)?)\s+(?:(?:in|on)\s+(?:the|this)\s+[a-z]+\s+)?"
-    r"(?:is|are)\s+(?:this|as|so|that)\s+(tall|big|large|small|long|wide|high|short)"
-    r"\b(?:\s+as\s+(?:this\s+one|this|it))?",
-    re.IGNORECASE,
-)
-_MOST = {
-    "tall": "tallest", "big": "biggest", "large": "largest", "small": "smallest",
-    "long": "longest", "wide": "widest", "high": "highest", "short": "shortest",
-}  # fmt: skip
-# "no other chair in the room is red": the red chair (a colour or material only).
-_NO_OTHER_IS = re.compile(
-    r"\bno\s+other\s+([a-z]+)\s+(?:(?:in|on)\s+(?:the|this)\s+[a-z]+\s+)?(?:is|are)\s+([a-z]+)\b",
-    re.IGNORECASE,
-)
-# Remarks that rule nothing out: "unlike the other one, …", "you won't need a key, …".
-_UNLIKE_OTHER = re.compile(r"\bunlike\s+the\s+other\s+(?:one|ones|[a-z]+)\s*,?", re.IGNORECASE)
-_WONT_NEED = re.compile(
-    r"\b(?:you|we|u)\s+(?:won't|will\s+not|wont|don't|do\s+not|dont)\s+need\s+[^,.;!?]*[,.;!?]",
-    re.IGNORECASE,
-)
-# A title or name after "titled" / "called": "the book titled no country for old men".
-_TITLED_NO = re.compile(
-    r"\b(titled|called|named|entitled)\s+(?:no|not|don't|do\s+not)\b", re.IGNORECASE
-)
-# Words printed on a thing before its name: "the no shoes doormat", "a do not disturb
-# hanger" (the thing named must be one the vocabulary knows).
-_PRINTED_NO = re.compile(
-    r"\b(the|a|an)\s+(?:no|do\s+not|don't|dont)\s+([a-z]+)\s+([a-z]+)\b", re.IGNORECASE
-)
-# "no fewer than three pillows", "no more than a metre away": a number, no negation.
-_NO_FEWER = re.compile(r"\bno\s+(fewer|more|less)\s+than\b", re.IGNORECASE)
-# The words of a sign before the word "sign": "the no smoking sign", "a do not disturb
-# sign", "the don't feed the ducks notice".
-_SIGN_WORDS = re.compile(
-    r"\b(?:no|do\s+not|don't|dont)\s+(?:[a-z]+\s+){1,3}?(?=(?:sign|signs|notice|placard|sticker|"
-    r"poster|label|plaque|hanger|tag)\b)",
-    re.IGNORECASE,
-)
-# "a whiteboard with nothing written on it": nothing on it, however it got there.
-_NOTHING_PUT = re.compile(
-    r"\b(nothing|anything)\s+(?:written|drawn|placed|sitting|lying|left|kept|stored|stuck|put|"
-    r"pinned|hanging)\s+(?=(?:on|in|inside)\b)",
     re.IGNORECASE,
 )
 # "where'd I put it", "what'd you do with it": after a question word, 'd is "did".
@@ -279,22 +179,6 @@ def _without_weekday(match: re.Match[str]) -> str:
 _SHADE_COMPARATIVES = frozenset({"lighter", "darker", "brighter", "paler", "deeper"})
 
 
-def _the_only_one(match: re.Match[str]) -> str:
-    """ "no other chair is red" → "the red chair", for a colour or a material; other
-    words ("no other chair is there") stay."""
-    kind, word = match.group(1), match.group(2)
-    return f"the {word} {kind}" if colour_or_material(word.lower()) else match.group(0)
-
-
-def _printed_words(match: re.Match[str]) -> str:
-    """ "the no shoes doormat" → "the doormat" when the last word names a thing the
-    vocabulary knows; other phrases stay."""
-    from inherit_sg.vocab.objects import canonical_label
-
-    det, thing = match.group(1), match.group(3)
-    return f"{det} {thing}" if canonical_label(thing.lower()) is not None else match.group(0)
-
-
 def _colour_said(match: re.Match[str]) -> str:
     """ "cream colour" → "cream", "light blue coloured" → "light blue": the colour itself;
     a word that names no colour ("rust-coloured") says one all the same, as an -ish hedge
@@ -382,27 +266,7 @@ def normalise(text: str) -> str:
     """The text spaCy is given (see the module docstring)."""
     text = unicodedata.normalize("NFKC", text).translate(_QUOTES)
     text = _WH_DID.sub(r"\1 did", text)
-    text = _MISSPELT_NOT.sub(lambda m: f"{m.group(2) or 'does'}n't", text)
-    text = _NOTHING_PUT.sub(r"\1 ", text)
-    text = _WHILE_I_AM_AT.sub("near ", text)
-    text = _NO_WAY_TO_MISS.sub("you can't miss", text)
-    text = _DOUBLE_NO.sub("has no", text)
-    text = _NO_OTHER_IS.sub(_the_only_one, text)
-    text = _UNLIKE_OTHER.sub("", text)
-    text = _WONT_NEED.sub("", text)
-    text = _TITLED_NO.sub(r"\1", text)
-    text = _PRINTED_NO.sub(_printed_words, text)
-    text = _NO_OTHER_AS.sub(lambda m: f"the {_MOST[m.group(2).lower()]} {m.group(1)}", text)
-    text = _NOT_ONLY.sub("", text)
-    text = _NOT_BAD.sub("good", text)
-    text = _NOT_FAR.sub("near", text)
-    text = _I_NOT_KNOW.sub("i don't know", text)
-    text = _NO_HYPHEN.sub("non-", text)
-    text = _MISSING_PART.sub("without ", text)
-    text = _NO_COMPARED.sub(lambda m: f"near {m.group(1)}" if m.group(1) else "", text)
-    text = _NO_FEWER.sub(lambda m: "at least" if m.group(1).lower() != "more" else "at most", text)
-    text = _SIGN_WORDS.sub("", text)
-    text = _NOBODY_USES.sub(lambda m: f" {m.group(1) or 'that'} is not in use", text)
+    text = plain_sayings(text)
     text = _NO_SUBJECT_PAST.sub(lambda m: f"i {m.group(1) or m.group(2)} ", text)
     text = _WHICH_IS_TARGET.sub(", that is the target", text)
     text = _without_written_words(text)
