@@ -125,7 +125,7 @@ def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     about a kind of object is a problem only where the problem names that subject
     ("the dishes are dirty"), not otherwise ("the laundry basket is by the washer")."""
     states = _terms(words, heads_only=True)
-    subjects = _terms(words, heads_only=False)
+    subjects = _terms(words, heads_only=True)  # "a laundry basket on the floor": no laundry
     thing = _object_subject(words)
     # a thing that does something ("the cable runs along the wall") states no problem
     # of the speaker's: with a noun subject, a problem with no subjects of its own needs

@@ -263,6 +263,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         made = FunctionConstraint(function=serves[0], labels=serves[1],
                                   weight=weighted("function", "hedge"), text=obj.noun)  # fmt: skip
         return [made], obj
+    if sense is None and tok.lemma in lx.mental_verbs:
+        return [], None  # "can't tell the colour well", "I don't know the name": no need
     function, labels = sense if sense is not None else (open_function(verb, words), ())
     if sense is None:
         g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
