@@ -358,8 +358,7 @@ def _by_size(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     if len(sized) < 2:
         return
     area, meant = sized[-1] if qualifier == "largest" else sized[0]
-    word = "largest" if qualifier == "largest" else "smallest"
-    _lower_unmeant(out, full, {meant}, f"the {word} one is meant ({area:.1f} m²)")
+    _lower_unmeant(out, full, {meant}, f"the {qualifier} one is meant ({area:.1f} m²)")
 
 
 def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -> None:

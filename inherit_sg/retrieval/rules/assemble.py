@@ -14,6 +14,7 @@ from inherit_sg.retrieval.constraints import (
     RoomConstraint,
     Superlative,
     Target,
+    Viewpoint,
 )
 from inherit_sg.retrieval.query import ParsedQuery, number_constraints
 from inherit_sg.retrieval.rules.clause import Clause
@@ -166,20 +167,23 @@ def _owns_bare_positions(head: NP, standpoint: Landmark, notes: list[str]) -> bo
     return given
 
 
-def _near_standpoint(clause: Clause, head: NP, notes: list[str]) -> list[Constraint]:
-    """ "near" the thing the speaker stands at or sits on ("from the family room sofa, the
-    picture to your right", "standing at the sink, the towel on your left"), as a hint
-    for a target the request places by nothing of its own: people point out what is
-    around them. From a door, the room entered instead ("as you walk into the bathroom,
-    …"). None when the standpoint is a room or a place one leaves ("as you come out of
-    the kitchen, …")."""
+def _standpoint(clause: Clause) -> Viewpoint | None:
+    """The request's viewpoint when it is a thing the speaker stands at or sits on; None
+    for a room, or a place one leaves ("as you come out of the kitchen, …")."""
     view = clause.viewpoint
     if view is None or view.landmark.target.layer != "object" or not view.landmark.target.labels:
-        return []
-    if _LEAVING & set(view.text.split()):
-        return []
-    if _owns_bare_positions(head, view.landmark, notes):
-        return []
+        return None
+    return None if _LEAVING & set(view.text.split()) else view
+
+
+def _near_standpoint(
+    view: Viewpoint, clause: Clause, head: NP, notes: list[str]
+) -> list[Constraint]:
+    """ "near" the thing the speaker stands at or sits on (``view``: "from the family
+    room sofa, the picture to your right", "standing at the sink, the towel on your
+    left"), as a hint for a target the request places by nothing of its own: people point
+    out what is around them. From a door, the room entered instead ("as you walk into
+    the bathroom, …")."""
     if any(isinstance(c, RelationConstraint) and not c.negated for c in head.constraints):
         return []
     if any(c.kind == "room" for c in clause.places + head.places):
@@ -235,7 +239,10 @@ def assemble(
             notes=tuple(notes),
             viewpoint=clause.viewpoint,
         )
-    standpoint = _near_standpoint(clause, head, notes)
+    view = _standpoint(clause)
+    standpoint: list[Constraint] = []
+    if view is not None and not _owns_bare_positions(head, view.landmark, notes):
+        standpoint = _near_standpoint(view, clause, head, notes)
     own = clause.pending + head.constraints
     named = clause.functions + own + clause.implied
     functions = [c for c in named if isinstance(c, FunctionConstraint)]

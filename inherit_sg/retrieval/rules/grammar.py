@@ -1413,8 +1413,8 @@ class Grammar(Cursor):
             if where.has("prep") and self.at("anaphor", k=1):
                 self.i += 2
                 prep = str(where.tags["prep"])
-            elif where.text in _UNDERNEATH:
-                self.i += 1
+            elif where.has("prep") and where.tags["prep"] == "under" and not self.np_start(1):
+                self.i += 1  # "… and two baskets underneath"
                 prep = "under"
             else:
                 self.restore(snap)
@@ -1630,8 +1630,6 @@ class Grammar(Cursor):
 
 
 _CENTRE_WORDS = frozenset({"center", "centre", "middle"})
-# Words that place a thing under the one spoken of ("… and two baskets underneath").
-_UNDERNEATH = frozenset({"underneath", "beneath", "below", "under"})
 # Parts built into a thing, which a map rarely holds apart from it ("the oven door").
 _BUILT_IN_PARTS = frozenset(
     {"door", "lid", "handle", "knob", "leg", "arm", "armrest", "backrest", "seat", "screen",

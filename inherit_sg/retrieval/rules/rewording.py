@@ -588,16 +588,16 @@ _SETTING_ASIDE = frozenset({"leave", "forget"})
 
 def set_aside_first(sentence: list[Word]) -> list[Word]:
     """ "leave the heavy box and bring the small box", "forget the kitchen, check the
-    grill on the deck", "never mind the sofa, look under the bed": a thing or place set
-    aside before the errand is ruled out, as "…, not the heavy box" would. Only a bare
-    phrase is set aside: "leave the keys on the table and …" says where to put them."""
-    start = 2 if [w.text for w in sentence[:2]] == ["never", "mind"] else 1
-    if start == 1 and (not sentence or sentence[0].text not in _SETTING_ASIDE):
+    grill on the deck": a thing or place set aside before the errand is ruled out, as
+    "…, not the heavy box" would. Only a bare phrase is set aside: "leave the keys on the
+    table and …" says where to put them. ("never mind …" is called off before this, by
+    :func:`called_off`.)"""
+    if not sentence or sentence[0].text not in _SETTING_ASIDE:
         return sentence
-    end = start
+    end = 1
     while end < len(sentence) and sentence[end].pos in ("DET", "ADJ", "NOUN", "PROPN", "NUM"):
         end += 1
-    phrase = sentence[start:end]
+    phrase = sentence[1:end]
     if not any(w.pos in ("NOUN", "PROPN") for w in phrase) or end + 1 >= len(sentence):
         return sentence
     if sentence[end].text not in (",", "and"):

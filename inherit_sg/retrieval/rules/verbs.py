@@ -180,8 +180,9 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         assert obj is not None
         g.notes.append(f"'{tok.text} {obj.noun}' (past): the object is the target")
         return [], obj
+    first = _first_object_word(words)  # "put this …": at hand; "put my …": particular
     going = _destination_relation(obj) if tok.lemma in _PLACING_VERBS and named else None
-    if going is not None and obj is not None and _first_object_word(words) not in _AT_HAND:
+    if going is not None and obj is not None and first not in _AT_HAND:
         # "put the DVD on the top shelf", "hang the coat on the hook": the thing to move
         # is sought; where it goes says nothing about where it is now ("put this letter
         # on the desk": the letter is at hand, the desk is sought)
@@ -198,14 +199,14 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         and not purpose
         and not _worn(g)
         and _imperative(g, start)
-        and _first_object_word(words) in PARTICULAR - _AT_HAND
+        and first in PARTICULAR - _AT_HAND
     ):
         # "put my slippers by the bed", "put the mug away", "put the apple from the
         # counter in the fridge": one particular thing to move, found first ("put this
         # letter on the desk": the letter is at hand, where it goes is sought)
         g.notes.append(f"'{tok.text} {obj.noun}': the thing moved is the target")
         return [], obj
-    at_hand = _first_object_word(words) in _AT_HAND  # "rinse this in the kitchen sink"
+    at_hand = first in _AT_HAND  # "rinse this in the kitchen sink"
     destination = _destination(obj) if tok.lemma in _PLACING_VERBS or at_hand else None
     if (
         destination is not None
