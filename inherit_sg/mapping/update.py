@@ -66,6 +66,44 @@ RoomLocator = Callable[[float, float, str | None], str | None]
 KeyframeView = Callable[[str], tuple[bytes | None, dict[str, Box]] | None]
 
 
+# An object outside every room's mask belongs to the nearest room within this many
+# metres of it (the floor a camera saw past a doorway or over furniture is often not
+# segmented into its room).
+ROOM_REACH = 2.5
+
+
+def mask_distance(mask: RoomMask, x: float, y: float) -> float:
+    """Metres from world point (x, y) to the nearest covered cell of ``mask`` (0 on it;
+    infinite for an empty mask)."""
+    if mask.contains_xy(x, y):
+        return 0.0
+    rows, cols = np.nonzero(mask.cells)
+    if rows.size == 0:
+        return float("inf")
+    cx = mask.origin_x + (cols + 0.5) * mask.resolution
+    cy = mask.origin_y + (rows + 0.5) * mask.resolution
+    return float(np.sqrt(np.min((cx - x) ** 2 + (cy - y) ** 2)))
+
+
+def nearest_room(graph: SceneGraph, node: ObjectNode) -> str | None:
+    """Closest room of the object's floor, within :data:`ROOM_REACH` of its mask
+    (of its centre when it has none): objects on thresholds, in doorways or outside
+    the observed free space (a corner of a room the camera only looked into)."""
+    best, best_d = None, ROOM_REACH
+    x, y = node.position[0], node.position[1]
+    for room in graph.nodes(Layer.ROOM):
+        if isinstance(room, RoomNode) and room.floor_id == node.floor_id:
+            if room.mask is None:
+                d = float(np.hypot(room.position[0] - x, room.position[1] - y))
+            else:
+                d = mask_distance(room.mask, x, y)
+            if d == 0.0:
+                return room.id
+            if d < best_d:
+                best, best_d = room.id, d
+    return best
+
+
 @dataclass
 class UpdateStats:
     """What one global update changed."""
@@ -172,25 +210,6 @@ class HierarchyBuilder:
             if tracked.node.id in door_ids:
                 tracked.node.label = EXTERIOR_DOOR if tracked.node.id in outer else tracked.label
 
-    def _nearest_room(self, graph: SceneGraph, node: ObjectNode) -> str | None:
-        """Closest room of the object's floor by room centre (objects on thresholds,
-        in doorways or outside the observed free space)."""
-        best, best_d = None, 2.5
-        for room in graph.nodes(Layer.ROOM):
-            if isinstance(room, RoomNode) and room.floor_id == node.floor_id:
-                d = float(
-                    np.hypot(
-                        room.position[0] - node.position[0], room.position[1] - node.position[1]
-                    )
-                )
-                if room.mask is not None and room.mask.contains_xy(
-                    node.position[0], node.position[1]
-                ):
-                    return room.id
-                if d < best_d:
-                    best, best_d = room.id, d
-        return best
-
     def rebuild(self, graph: SceneGraph, objects: ObjectMap, locate: RoomLocator) -> UpdateStats:
         """Run the bottom-up rebuild; the floor/room layers must already be current."""
         stats = UpdateStats()
@@ -208,7 +227,7 @@ class HierarchyBuilder:
             node.floor_id = tracked.floor_id
             if node.status is ObjectStatus.REMOVED:
                 continue
-            found = locate(node.position[0], node.position[1], node.floor_id) or self._nearest_room(
+            found = locate(node.position[0], node.position[1], node.floor_id) or nearest_room(
                 graph, node
             )
             node.room_id = found

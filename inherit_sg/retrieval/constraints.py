@@ -86,7 +86,7 @@ DIRECTIONS = ("left", "right", "front", "back")
 PLACEMENTS = ("wall", "corner", "centre")
 # How a request sets the viewer: "facing the windows", "from the door" / "as you enter
 # through the door", "with your back to the TV".
-VIEWPOINT_KINDS = ("facing", "from", "back_to")
+VIEWPOINT_KINDS = ("facing", "from", "back_to", "seated")
 RELATIVE_FLOORS = ("upstairs", "downstairs", "top", "bottom")
 ATTRIBUTE_KEYS = ("colour", "material", "size", "height", "shape", "state", "part", "other")
 REFERENCES = ("none", "previous", "other", "exclude_previous", "refine")
@@ -409,13 +409,18 @@ class Viewpoint:
     ``kind`` (``VIEWPOINT_KINDS``): ``facing`` — looking towards the landmark ("if you
     face the windows"); ``from`` — standing at the landmark and looking into the room
     ("from the door", "as you come through the door"); ``back_to`` — looking away from
-    the landmark ("with your back to the TV"). The robot's own pose, when a request
-    carries it, is given to the engine separately (:class:`ViewerPose`).
+    the landmark ("with your back to the TV"); ``seated`` — sitting or lying on the
+    landmark and looking the way it faces ("sitting on the sofa", "lying in bed"). The
+    robot's own pose, when a request carries it, is given to the engine separately
+    (:class:`ViewerPose`). ``toward``: what the speaker looks at from there, when the
+    request says so ("standing at the sink looking at the bar", "sitting on the couch
+    facing the TV").
     """
 
     kind: str = "facing"
     landmark: Landmark = field(default_factory=Landmark)
     text: str = ""
+    toward: Landmark | None = None
 
     def __post_init__(self) -> None:
         check(
@@ -425,16 +430,21 @@ class Viewpoint:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able form."""
-        return {"kind": self.kind, "landmark": self.landmark.to_dict(), "text": self.text}
+        out = {"kind": self.kind, "landmark": self.landmark.to_dict(), "text": self.text}
+        if self.toward is not None:
+            out["toward"] = self.toward.to_dict()
+        return out
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Viewpoint:
         """Inverse of :meth:`to_dict`."""
         check(isinstance(data, dict), "viewpoint must be an object")
+        toward = data.get("toward")
         return cls(
             kind=str(data.get("kind", "facing")),
             landmark=Landmark.from_dict(data.get("landmark", {})),
             text=str(data.get("text", "")),
+            toward=Landmark.from_dict(toward) if toward is not None else None,
         )
 
 

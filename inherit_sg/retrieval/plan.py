@@ -18,7 +18,7 @@ viewer (:mod:`inherit_sg.retrieval.viewer`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -70,8 +70,11 @@ CYPHER_LAYER = {
 # The score term of a query image (weighted like a relation: strong, but not the name).
 IMAGE_TERM = "image"
 IMAGE_WEIGHT = 0.8
-# The landmark key of a request's viewpoint in the target spec.
+# The landmark key of a request's viewpoint in the target spec, and of what the speaker
+# looks at from there ("standing at the sink looking at the bar").
 VIEWPOINT = "viewpoint"
+VIEWPOINT_TOWARD = "viewpoint/toward"
+VIEWPOINT_KEYS = (VIEWPOINT, VIEWPOINT_TOWARD)
 VECTOR_INDEX = {"object": "object_text", "area": "area_text", "room": "room_text"}
 FULLTEXT_TABLE = {"object": "Object", "area": "Area", "room": "Room"}
 
@@ -349,6 +352,40 @@ def usual_rooms(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
     return ()
 
 
+# Weight of the room a landmark is taken to share with what is sought ("the cushion next
+# to the sofa in the family room": that sofa is in the family room too).
+SHARED_ROOM_WEIGHT = 0.5
+
+
+def shared_room(
+    key: str, lm: Landmark, parent: tuple[Constraint, ...], con: Constraint | None = None
+) -> tuple[Constraint, ...]:
+    """The weak room constraint a landmark object takes from the request's own room: a
+    thing placed by a landmark, or seen from one, is mostly in the landmark's room. None
+    when the landmark names its own room or is no object, when the request's room is
+    ruled out or implied rather than said, or when the relation itself is ruled out
+    ("not next to the sofa" says nothing of where that sofa is)."""
+    if lm.target.layer != "object" or any(isinstance(c, RoomConstraint) for c in lm.constraints):
+        return ()
+    if con is not None and con.negated:
+        return ()
+    said = [
+        c for c in parent if isinstance(c, RoomConstraint) and not c.negated and "~" not in c.id
+    ]
+    if len(said) != 1 or said[0].opening:
+        return ()
+    room = said[0]
+    why = f"the {lm.target.describe()} is taken to be in the {room.name or room.type} too"
+    return (replace(room, id=f"{key}~room", weight=SHARED_ROOM_WEIGHT, text=why),)
+
+
+def _numbered(lm: Landmark, prefix: str) -> Landmark:
+    """``lm`` with ids on its constraints (a viewpoint's landmark has none yet)."""
+    if all(c.id for c in lm.constraints):
+        return lm
+    return Landmark(target=lm.target, constraints=number_constraints(lm.constraints, prefix))
+
+
 class Compiler:
     """Turns parsed requests into plans for one map snapshot."""
 
@@ -364,10 +401,13 @@ class Compiler:
             "target", parsed.target, parsed.constraints, parsed.exclude_ids, viewpoint=vp
         )
         if vp is not None:
-            lm = vp.landmark
-            if any(not c.id for c in lm.constraints):
-                lm = Landmark(target=lm.target, constraints=number_constraints(lm.constraints, "v"))
-            spec.landmarks = {VIEWPOINT: self._landmark(VIEWPOINT, lm), **spec.landmarks}
+            room = spec.constraints
+            stand = _numbered(vp.landmark, "v")
+            seen = {VIEWPOINT: self._landmark(VIEWPOINT, stand, room=room)}
+            if vp.toward is not None:
+                toward = _numbered(vp.toward, "t")
+                seen[VIEWPOINT_TOWARD] = self._landmark(VIEWPOINT_TOWARD, toward, room=room)
+            spec.landmarks = {**seen, **spec.landmarks}
         if image is not None and spec.layer == "object":
             spec.image = image
             at = next(i for i, s in enumerate(spec.steps) if s.fallback or s.op != "cypher")
@@ -393,8 +433,19 @@ class Compiler:
             )
         return QueryPlan(parsed=parsed, target=spec)
 
-    def _landmark(self, key: str, lm: Landmark, viewpoint: Viewpoint | None = None) -> NodeSpec:
-        return self._spec(key, lm.target, lm.constraints, (), viewpoint=viewpoint)
+    def _landmark(
+        self,
+        key: str,
+        lm: Landmark,
+        viewpoint: Viewpoint | None = None,
+        *,
+        room: tuple[Constraint, ...] = (),
+        con: Constraint | None = None,
+    ) -> NodeSpec:
+        """The spec of one landmark; ``room`` holds the constraints of what it places
+        (whose room it shares, :func:`shared_room`), ``con`` the relation placing it."""
+        cons = (*lm.constraints, *shared_room(key, lm, room, con))
+        return self._spec(key, lm.target, cons, (), viewpoint=viewpoint)
 
     def _spec(
         self,
@@ -417,13 +468,17 @@ class Compiler:
         vp = viewpoint
         for con in cons:
             if isinstance(con, RelationConstraint):
-                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark, vp)
+                spec.landmarks[con.id] = self._landmark(
+                    f"{con.id}.landmark", con.landmark, vp, room=cons, con=con
+                )
                 if con.landmark2 is not None:
                     spec.landmarks[f"{con.id}/2"] = self._landmark(
-                        f"{con.id}.landmark2", con.landmark2, vp
+                        f"{con.id}.landmark2", con.landmark2, vp, room=cons, con=con
                     )
             elif isinstance(con, Superlative) and con.landmark is not None:
-                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark, vp)
+                spec.landmarks[con.id] = self._landmark(
+                    f"{con.id}.landmark", con.landmark, vp, room=cons, con=con
+                )
             found = resolve_matches(con, spec.layer, self.snap, self.sim)
             if found is not None:
                 spec.matches[con.id] = found
@@ -573,7 +628,14 @@ class Compiler:
             "facing": f"stand behind the candidates and look towards the best {name}",
             "from": f"stand at the best {name} and look towards the candidates",
             "back_to": f"stand at the candidates with your back to the best {name}",
+            "seated": f"sit on the best {name} and look the way it faces (into its room)",
         }[vp.kind]
+        if vp.toward is not None and vp.kind in ("from", "seated"):
+            seen = vp.toward.target.describe()
+            how = (
+                f"{'sit on' if vp.kind == 'seated' else 'stand at'} the best {name} and look "
+                f"at the best {seen} (candidates of {VIEWPOINT_TOWARD}), else {how}"
+            )
         return Step(
             "viewer",
             spec.key,

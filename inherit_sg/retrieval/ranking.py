@@ -1,7 +1,8 @@
 """Rank a plan: resolve its landmark specs recursively, then score the target.
 
-The request's viewpoint (the spec under ``VIEWPOINT``) is resolved first and its
-landmark candidates are shared with every spec below it, so a landmark's own ordinal
+The request's viewpoint (the spec under ``VIEWPOINT``, and what the speaker looks at
+from there under ``VIEWPOINT_TOWARD``) is resolved first and its landmark candidates are
+shared with every spec below it, so a landmark's own ordinal
 ("the mug on the leftmost table") is seen from the same viewpoint as the target's.
 """
 
@@ -11,7 +12,7 @@ from collections.abc import Callable, Sequence
 
 from inherit_sg.retrieval.candidates import Candidates
 from inherit_sg.retrieval.graph_checks import Landmarks
-from inherit_sg.retrieval.plan import VIEWPOINT, NodeSpec
+from inherit_sg.retrieval.plan import VIEWPOINT_KEYS, NodeSpec
 from inherit_sg.retrieval.scoring import Scored, Scorer, landmark_quality
 
 # Candidates of a spec, given its resolved landmarks.
@@ -33,11 +34,12 @@ def rank_spec(
         return found
 
     def evaluate(spec: NodeSpec, shared: dict[str, Landmarks]) -> Sequence[Scored]:
-        if VIEWPOINT in spec.landmarks:
-            shared = {VIEWPOINT: landmark(spec.landmarks[VIEWPOINT], {})}
+        seen = {k: landmark(spec.landmarks[k], {}) for k in VIEWPOINT_KEYS if k in spec.landmarks}
+        if seen:
+            shared = seen
         marks: dict[str, Landmarks] = {}
         for key, sub in spec.landmarks.items():
-            if key != VIEWPOINT:
+            if key not in VIEWPOINT_KEYS:
                 marks[key] = landmark(sub, shared)
         marks.update(shared)
         cands = generate(spec, marks)

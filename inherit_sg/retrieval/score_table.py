@@ -24,6 +24,11 @@ from inherit_sg.retrieval.scored import Scored, Term
 
 # Kinds whose positive terms say how well a candidate is what was named.
 NAMED_KINDS = frozenset({"label", "function"})
+# Relations this weak are hints (near where the speaker stands, a hedged "maybe by the
+# sink"): they order the candidates but do not split the tier a superlative ranks, so
+# "standing at the sink, the stool furthest to the left" counts every stool in view, not
+# only the ones the hint happens to find near the sink.
+HINT_WEIGHT = 0.4
 
 
 @dataclass
@@ -40,6 +45,10 @@ class Column:
     def values(self) -> np.ndarray:
         """Signed contributions ``p · w · Sim`` (as :attr:`Term.value` computes them)."""
         return self.polarity * self.weight * self.sims
+
+    def is_hint(self) -> bool:
+        """A positive relation this weak only hints (where the speaker stands)."""
+        return self.kind == "relation" and self.polarity > 0 and self.weight <= HINT_WEIGHT
 
     def term(self, row: int) -> Term:
         """The term of one row."""
@@ -96,16 +105,18 @@ class ScoreTable:
                 col.whys[row] = why
 
     # ------------------------------------------------------------- sums
-    def totals(self) -> np.ndarray:
-        """``Σ p·w·Sim`` per row, summed term by term in column order."""
+    def totals(self, hints: bool = True) -> np.ndarray:
+        """``Σ p·w·Sim`` per row, summed term by term in column order; without the
+        positive relation terms of weight at most :data:`HINT_WEIGHT` unless ``hints``."""
         total = np.zeros(len(self.ids))
         for col in self.columns.values():
-            total = total + col.values()
+            if hints or not col.is_hint():
+                total = total + col.values()
         return total
 
-    def scores(self) -> np.ndarray:
-        """``H_floor · Σ p·w·Sim`` per row."""
-        return self.h_floor * self.totals()
+    def scores(self, hints: bool = True) -> np.ndarray:
+        """``H_floor · Σ p·w·Sim`` per row (see :meth:`totals` for ``hints``)."""
+        return self.h_floor * self.totals(hints)
 
     def named_best(self) -> np.ndarray:
         """Best positive label / function similarity per row (0 when none)."""

@@ -55,7 +55,13 @@ from inherit_sg.retrieval.match import LABEL_SEMANTIC_MAX
 from inherit_sg.retrieval.ordinals import place
 from inherit_sg.retrieval.parts import part_sim
 from inherit_sg.retrieval.placement import PlacementMeter
-from inherit_sg.retrieval.plan import IMAGE_TERM, IMAGE_WEIGHT, VIEWPOINT, NodeSpec
+from inherit_sg.retrieval.plan import (
+    IMAGE_TERM,
+    IMAGE_WEIGHT,
+    VIEWPOINT,
+    VIEWPOINT_TOWARD,
+    NodeSpec,
+)
 from inherit_sg.retrieval.score_table import RankedRows, ScoreTable
 from inherit_sg.retrieval.scored import Scored
 from inherit_sg.retrieval.scored import Term as Term  # re-exported: callers import it here
@@ -261,6 +267,7 @@ class Scorer:
             self.snap,
             viewpoint=spec.viewpoint,
             viewpoint_marks=landmarks.get(VIEWPOINT, ()) if spec.viewpoint is not None else (),
+            toward_marks=landmarks.get(VIEWPOINT_TOWARD, ()) if spec.viewpoint is not None else (),
             robot=self.robot,
             keyframes=self.keyframes,
         )
@@ -615,7 +622,7 @@ class Scorer:
         live = np.flatnonzero(table.h_floor != 0)
         if not len(live):
             return
-        scores = table.scores()[live]
+        scores = table.scores(hints=False)[live]
         best = scores.max()
         rows = [int(r) for r, s in zip(live, scores, strict=True) if s >= best - SUPERLATIVE_TIER]
         tier = [table.scored(r) for r in rows]

@@ -35,6 +35,7 @@ from inherit_sg.retrieval.constraints import (
 )
 from inherit_sg.retrieval.graph_checks import PROXIMITY_NOTE
 from inherit_sg.retrieval.plan import NodeSpec
+from inherit_sg.retrieval.score_table import HINT_WEIGHT
 from inherit_sg.retrieval.scoring import Scored
 
 # Share of the box kept (centred) when naming a crop's colour: borders show background.
@@ -139,7 +140,8 @@ MEASURED_ATTRIBUTES = ("colour is ", "material is ")
 
 def graph_failures(ev: Evidence) -> list[str]:
     """Positive spatial / room / area / floor constraints the graph does not support
-    (a relation credited only for standing near the landmark is not supported), negated
+    (a relation credited only for standing near the landmark is not supported; hints
+    are not checked), negated
     ones it does, a colour or material the map measured otherwise, and a thing that is
     not what was asked for (its label or function match below :data:`NAMED_MIN`)."""
     out: list[str] = []
@@ -157,6 +159,8 @@ def graph_failures(ev: Evidence) -> list[str]:
             continue
         if term.kind not in ("relation", "room", "area"):
             continue
+        if term.kind == "relation" and term.polarity > 0 and term.weight <= HINT_WEIGHT:
+            continue  # a hint (near where the speaker stands) is no requirement
         unsupported = term.sim <= 0.0 or term.why.startswith(PROXIMITY_NOTE)
         if term.polarity > 0 and unsupported:
             out.append(f"{term.cid} ({term.kind}) not found in the graph")

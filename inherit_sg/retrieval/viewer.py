@@ -13,7 +13,9 @@ a. the request's viewpoint, resolved on the map (the best landmark candidate, ne
    the group among equally good ones): ``facing`` L — look from the group's centroid
    towards L, standing back from the centroid by the group's spread plus
    ``FACING_BACKOFF``; ``from`` L — stand at L, look towards the centroid;
-   ``back_to`` L — stand at the centroid, look away from L;
+   ``back_to`` L — stand at the centroid, look away from L; ``seated`` on L — sit at L
+   and look the way a seat or bed faces, into its room: towards the centre of L's room
+   (as ``from`` L when L has no room or stands at its centre);
 b. the robot's pose sent with the request (:class:`ViewerPose`);
 c. the camera of the keyframe that saw most of the group (SEEN_IN records): the
    objects as the robot saw them;
@@ -53,6 +55,9 @@ COINCIDENT = 0.05
 # A camera axis whose horizontal part is shorter than this looks (almost) straight
 # down: its image "up" gives the heading instead.
 LEVEL_AXIS = 0.2
+# What the speaker looks at counts only when the map has it this well (a "headboard" is
+# not the first frame on the wall that text similarity offers).
+TOWARD_QUALITY = 0.5
 SOURCES = ("viewpoint", "robot", "keyframe", "room")
 
 
@@ -207,12 +212,14 @@ class ViewFinder:
         *,
         viewpoint: Viewpoint | None = None,
         viewpoint_marks: Landmarks = (),
+        toward_marks: Landmarks = (),
         robot: ViewerPose | None = None,
         keyframes: KeyframeViews | None = None,
     ) -> None:
         self.snap = snap
         self.viewpoint = viewpoint
         self.marks = viewpoint_marks
+        self.toward = toward_marks
         self.robot = robot
         self.keyframes = keyframes
         self._views: dict[tuple[str, ...], View | None] = {}
@@ -249,16 +256,20 @@ class ViewFinder:
         room = self._from_room(group, centroid, spread)
         return View(room.position, room.forward, room.source, missed + room.why)
 
-    def _landmark(self, group: tuple[str, ...], centroid: np.ndarray) -> str | None:
-        """The best viewpoint landmark candidate, nearest the group among equals (on
-        the group's floor when one there is as good)."""
-        if not self.marks:
+    def _landmark(
+        self, group: tuple[str, ...], centroid: np.ndarray, marks: Landmarks | None = None
+    ) -> str | None:
+        """The best viewpoint landmark candidate (of ``marks``, by default the
+        standpoint's), nearest the group among equals (on the group's floor when one
+        there is as good)."""
+        marks = self.marks if marks is None else marks
+        if not marks:
             return None
-        best = max(q for _, q in self.marks)
+        best = max(q for _, q in marks)
         levels = Counter(self.snap.level_of(n) for n in group)
         level = levels.most_common(1)[0][0]
         ranked: list[tuple[int, float, str]] = []
-        for lid, q in self.marks:
+        for lid, q in marks:
             pos = self.snap.position(lid)
             if q < best - LANDMARK_TIE or pos is None or lid in group:
                 continue
@@ -281,16 +292,51 @@ class ViewFinder:
         if towards is None:
             return None, f"(viewpoint '{kind} {name}': {lid} stands among the candidates) "
         label = getattr(self.snap.node(lid), "label", "") or name
+        looked = self._looking_at(vp, lid, there)
+        if looked is not None:
+            return looked, ""
+        if vp.kind == "seated":
+            inward = self._into_room(lid, there)
+            if inward is not None:
+                view = View((float(there[0]), float(there[1])), inward, "viewpoint", "")
+                why = f"seated on {label} {lid}, looking into its room"
+                return View(view.position, view.forward, view.source, why, lid), ""
         if vp.kind == "facing":
             pos = centroid - np.asarray(towards) * (spread + FACING_BACKOFF)
             view = View((float(pos[0]), float(pos[1])), towards, "viewpoint", "")
-        elif vp.kind == "from":
+        elif vp.kind in ("from", "seated"):
             away = (-towards[0], -towards[1])
             view = View((float(there[0]), float(there[1])), away, "viewpoint", "")
         else:  # back_to
             away = (-towards[0], -towards[1])
             view = View((float(centroid[0]), float(centroid[1])), away, "viewpoint", "")
         return View(view.position, view.forward, view.source, f"{kind} {label} {lid}", lid), ""
+
+    def _looking_at(self, vp: Viewpoint, lid: str, there: np.ndarray) -> View | None:
+        """Standing (or seated) at ``lid`` and looking at what the request says the
+        speaker looks at ("… looking at the bar"): its best candidate nearest the
+        standpoint. None when the request says none or the map has none."""
+        if vp.toward is None or vp.kind not in ("from", "seated"):
+            return None
+        marks = [(i, q) for i, q in self.toward if q >= TOWARD_QUALITY]
+        seen = self._landmark((lid,), there, marks)
+        pos = self.snap.position(seen) if seen is not None else None
+        heading = _unit(np.asarray(pos, float)[:2] - there) if pos is not None else None
+        if seen is None or heading is None:
+            return None
+        label = getattr(self.snap.node(lid), "label", "") or lid
+        what = getattr(self.snap.node(seen), "label", "") or seen
+        why = f"at {label} {lid}, looking at {what} {seen}"
+        return View((float(there[0]), float(there[1])), heading, "viewpoint", why, lid)
+
+    def _into_room(self, lid: str, there: np.ndarray) -> tuple[float, float] | None:
+        """The way a seat or bed at ``there`` faces: towards the centre of its room
+        (furniture stands with its back to a wall); None without a room."""
+        rid = self.snap.room_of.get(lid)
+        room = self.snap.rooms.get(rid) if rid is not None else None
+        if room is None:
+            return None
+        return _unit(np.asarray(room.position, float)[:2] - there)
 
     def _from_keyframe(self, group: tuple[str, ...]) -> View | None:
         if self.keyframes is None:

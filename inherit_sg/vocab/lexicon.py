@@ -131,6 +131,7 @@ class Lexicon:
     place_modifiers: dict[str, tuple[str, str]]
     corrections: frozenset[str]
     viewpoint_verbs: frozenset[str]
+    seated_verbs: frozenset[str]
     facing_verbs: frozenset[str]
     contractions: dict[str, str]
     have_like: frozenset[str]
@@ -238,6 +239,7 @@ def lexicon() -> Lexicon:
         place_modifiers=_place_map(_section(words, "place_modifiers"), "words.place_modifiers"),
         corrections=frozenset(_list(_section(words, "more"), "corrections", where)),
         viewpoint_verbs=frozenset(_list(_section(words, "more"), "viewpoint_verbs", where)),
+        seated_verbs=frozenset(_list(_section(words, "more"), "seated_verbs", where)),
         facing_verbs=frozenset(_list(_section(words, "more"), "facing_verbs", where)),
         contractions={
             k.lower(): v for k, v in _section(words, "contractions").items() if isinstance(v, str)

@@ -126,6 +126,16 @@ def check(parsed: ParsedQuery, exp: dict[str, Any]) -> None:
     if "excluded" in exp:
         excluded = [c for c in parsed.of_kind("label") if c.negated]
         assert [list(c.labels) for c in excluded] == [exp["excluded"]]  # type: ignore[union-attr]
+    if "viewpoint" in exp:  # [kind, standpoint label, what the speaker looks at or None]
+        kind, label, toward = exp["viewpoint"]
+        vp = parsed.viewpoint
+        assert vp is not None and vp.kind == kind, vp
+        _check_landmark(vp.landmark, label, "viewpoint")
+        if toward is None:
+            assert vp.toward is None, vp.toward
+        else:
+            assert vp.toward is not None, vp
+            _check_landmark(vp.toward, toward, "toward")
     for cid, weight in exp.get("weights", {}).items():
         found = parsed.find(cid)
         assert found is not None and found.weight == pytest.approx(weight), (cid, found)

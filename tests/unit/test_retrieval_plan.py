@@ -88,3 +88,34 @@ def test_room_targets_match_room_nodes() -> None:
     label = next(c for c in plan.target.constraints if c.kind == "label")
     assert set(plan.target.matches[label.id]) == {"room:kitchen"}
     assert plan.target.steps[0].cypher == "MATCH (n:Room) RETURN n.id"
+
+
+def test_a_landmark_shares_the_room_the_request_names() -> None:
+    plan = compile_text("the cushion next to the sofa in the living room")
+    (key,) = [k for k in plan.target.landmarks if k != "viewpoint"]
+    rooms = [c for c in plan.target.landmarks[key].constraints if c.kind == "room"]
+    assert len(rooms) == 1 and rooms[0].type == "living room"
+    assert rooms[0].weight == pytest.approx(0.5) and rooms[0].id.endswith("~room")
+    assert "too" in rooms[0].text
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "the cushion next to the sofa",  # no room said
+        "the cushion not next to the sofa in the living room",  # the relation ruled out
+        "the cushion next to the sofa, not in the living room",  # the room ruled out
+    ],
+)
+def test_no_shared_room_without_a_room_said_of_what_is_sought(text: str) -> None:
+    plan = compile_text(text)
+    for key, spec in plan.target.landmarks.items():
+        assert not [c for c in spec.constraints if c.kind == "room"], (key, spec.constraints)
+
+
+def test_a_seated_viewpoint_and_what_it_looks_at_are_both_landmarks() -> None:
+    plan = compile_text("sitting on the sofa facing the tv, the lamp on my left")
+    assert plan.parsed.viewpoint is not None and plan.parsed.viewpoint.kind == "seated"
+    assert {"viewpoint", "viewpoint/toward"} <= set(plan.target.landmarks)
+    viewer = [s for s in plan.target.steps if s.op == "viewer"]
+    assert viewer and "look at the best tv" in viewer[0].text

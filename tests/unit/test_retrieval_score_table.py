@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from inherit_sg.retrieval.constraints import LabelConstraint, Landmark, RelationConstraint, Target
+from inherit_sg.retrieval.score_table import HINT_WEIGHT, ScoreTable
 from inherit_sg.retrieval.scoring import Scored, _kind_first
 from inherit_sg.retrieval.snapshot import MapSnapshot, build_snapshot
 from tests.unit.retrieval_fixtures import small_graph
@@ -50,3 +52,16 @@ def test_rows_read_like_plain_candidates(snap: MapSnapshot, text: str) -> None:
     term = next(iter(first.terms.values()))
     term.sim += 1.0  # a built row's terms are its own, and its score follows them
     assert first.score == pytest.approx(table_scores[0] + term.polarity * term.weight)
+
+
+def test_hints_are_left_out_of_the_scores_a_superlative_tiers_on() -> None:
+    table = ScoreTable(["obj:a", "obj:b"], [["cypher"], ["cypher"]])
+    table.add(LabelConstraint(id="c1", labels=("stool",)), [1.0, 1.0])
+    sink = Landmark(target=Target(labels=("sink",), noun="sink"))
+    hint = RelationConstraint(id="c2", predicate="near", landmark=sink, weight=HINT_WEIGHT)
+    table.add(hint, [0.5, 0.0])
+    assert table.columns["c2"].is_hint() and not table.columns["c1"].is_hint()
+    assert table.scores().tolist() == pytest.approx([1.2, 1.0])
+    assert table.scores(hints=False).tolist() == pytest.approx([1.0, 1.0])
+    firm = RelationConstraint(id="c3", predicate="near", landmark=sink, weight=0.8)
+    assert not table.add(firm, [0.0, 0.0]).is_hint()

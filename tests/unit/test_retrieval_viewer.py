@@ -133,6 +133,59 @@ def test_viewpoint_back_to_looks_away_from_the_landmark(snap: MapSnapshot) -> No
     assert view.forward == pytest.approx((0.0, -1.0), abs=1e-3)
 
 
+def test_seated_looks_the_way_the_seat_faces_into_its_room(snap: MapSnapshot) -> None:
+    # "sitting on the cabinet" (against the east wall): looking west, to the room's centre,
+    # whatever the group; the chairs' own centroid would say south-west
+    finder = ViewFinder(
+        snap, viewpoint=viewpoint("seated", "cabinet"), viewpoint_marks=[("obj:cb1", 1.0)]
+    )
+    view = finder.view(["obj:ch1", "obj:ch2"])
+    assert view is not None and view.why == "seated on cabinet obj:cb1, looking into its room"
+    assert view.position == pytest.approx((5.7, 2.5), abs=1e-6)
+    assert view.forward == pytest.approx((-1.0, 0.0), abs=1e-3)
+    assert view.lateral(np.array([[3.0, 4.0]]))[0] > 0  # north is on the right
+
+
+def test_seated_without_a_room_looks_at_the_group(snap: MapSnapshot) -> None:
+    roomless = MapSnapshot(**{**snap.__dict__, "room_of": {}})
+    finder = ViewFinder(
+        roomless, viewpoint=viewpoint("seated", "door"), viewpoint_marks=[("obj:d1", 1.0)]
+    )
+    view = finder.view(list(CHAIRS))
+    assert view is not None and view.why == "seated door obj:d1"
+    towards = np.array([3.0 - 0.05, 1.5 - 3.5])
+    assert view.forward == pytest.approx(tuple(towards / np.linalg.norm(towards)), abs=1e-3)
+
+
+def test_standing_at_a_landmark_looking_at_another(snap: MapSnapshot) -> None:
+    # "standing at the door looking at the cabinet": east, not towards the chairs
+    vp = Viewpoint(
+        kind="from",
+        landmark=Landmark(target=Target(labels=("door",), noun="door")),
+        toward=Landmark(target=Target(labels=("cabinet",), noun="cabinet")),
+    )
+    finder = ViewFinder(
+        snap, viewpoint=vp, viewpoint_marks=[("obj:d1", 1.0)], toward_marks=[("obj:cb1", 1.0)]
+    )
+    view = finder.view(list(CHAIRS))
+    assert view is not None and view.why == "at door obj:d1, looking at cabinet obj:cb1"
+    towards = np.array([5.7 - 0.05, 2.5 - 3.5])
+    assert view.forward == pytest.approx(tuple(towards / np.linalg.norm(towards)), abs=1e-3)
+
+
+def test_a_weak_match_of_what_is_looked_at_is_not_used(snap: MapSnapshot) -> None:
+    vp = Viewpoint(
+        kind="from",
+        landmark=Landmark(target=Target(labels=("door",), noun="door")),
+        toward=Landmark(target=Target(labels=("headboard",), noun="headboard")),
+    )
+    finder = ViewFinder(
+        snap, viewpoint=vp, viewpoint_marks=[("obj:d1", 1.0)], toward_marks=[("obj:cb1", 0.1)]
+    )
+    view = finder.view(list(CHAIRS))
+    assert view is not None and view.why == "from door obj:d1"
+
+
 def test_viewpoint_takes_the_nearest_of_equally_good_landmarks(snap: MapSnapshot) -> None:
     marks = [("obj:b1", 1.0), ("obj:cb1", 0.98), ("obj:tv1", 0.5)]  # b1 is farther
     finder = ViewFinder(snap, viewpoint=viewpoint("facing", "thing"), viewpoint_marks=marks)

@@ -91,6 +91,8 @@ _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back
 
 # Last words of a viewpoint phrase that needs no landmark ("when you walk in", "as you
 # come up"), so that a thing and "is" after it open the main clause.
+# Prepositions that seat the speaker on what follows ("sitting on the sofa", "in bed").
+_SEATS = frozenset({"on", "in", "upon", "onto", "into"})
 _COMPLETE_VIEW_ENDS = frozenset({"in", "inside", "enter", "up", "down", "around", "round", "out"})
 # "before I head out …": a time clause, context rather than the target.
 _TIME_WORDS = frozenset({"before", "after", "once", "until"})
@@ -311,6 +313,23 @@ _OPENING_DETERMINERS = frozenset({"the", "a", "an", "this", "that"})
 def _rooms_ruled_out(cons: list[Constraint]) -> list[Constraint]:
     """``cons`` with every room constraint negated."""
     return [replace(c, negated=True) if isinstance(c, RoomConstraint) else c for c in cons]
+
+
+def _without_last_relation(
+    cons: tuple[Constraint, ...],
+) -> tuple[tuple[Constraint, ...], Landmark | None]:
+    """``cons`` without the relation said last, however deep in its landmarks ("the foot
+    of the bed looking at the headboard": the headboard's), and that relation's
+    landmark (None when there is no relation)."""
+    for k in range(len(cons) - 1, -1, -1):
+        con = cons[k]
+        if isinstance(con, RelationConstraint) and not con.negated:
+            inner, seen = _without_last_relation(con.landmark.constraints)
+            if seen is None:
+                return cons[:k] + cons[k + 1 :], con.landmark
+            deeper = replace(con, landmark=replace(con.landmark, constraints=inner))
+            return (*cons[:k], deeper, *cons[k + 1 :]), seen
+    return cons, None
 
 
 class ClauseParser(Grammar):
@@ -609,15 +628,20 @@ class ClauseParser(Grammar):
         ):
             if tok.text in ("to", "toward", "towards") and kind == "from":
                 kind = "facing"  # "as you walk towards the window"
+            elif tok.text in _SEATS and kind == "from" and cue.lemma in lx.seated_verbs:
+                kind = "seated"  # "sitting on the sofa", "lying in bed"
             self.advance()  # "as you come in through the door", "stand at the sink"
             linked = True
             if self.np_start():
                 break
         complete = cue.text.split()[-1] in _COMPLETE_VIEW_ENDS
+        looked: Landmark | None = None
         if not linked and complete and cue.has("view") and self._subject_follows():
             lm = None  # "when you walk in the bookshelf is straight ahead": the main clause
         else:
+            start = self.i
             lm = self.parse_np(landmark=True) if self.np_start() else None
+            looked = self._looked_at(lm, start) if lm is not None else None
         if lm is not None and lm.kind == VAGUE:
             lm = self._position_landmark(lm)  # "from the top of the stairs"
         if lm is not None and lm.kind not in (OBJECT, ROOM):
@@ -638,7 +662,8 @@ class ClauseParser(Grammar):
                 kind, lm = "from", origin
             else:
                 self.restore(here)
-        self._second_view()  # "standing at the printer looking toward the windows"
+        seen = self._second_view()  # "standing at the printer looking toward the windows"
+        looking = seen.landmark() if seen is not None else looked
         opener = opener or cue.text.split()[0] in _VIEW_OPENERS
         moving = cue.lemma in lx.viewpoint_verbs  # "walk to …", not "face …"
         if lm is not None and not opener and not self._more_follows(moving):
@@ -650,7 +675,10 @@ class ClauseParser(Grammar):
             # "looking at the sinks from the door, the one furthest away": the sinks
             self.group = self.group or replace(group, constraints=[], places=[])
         out.viewpoint = Viewpoint(
-            kind=kind, landmark=landmark, text=" ".join(t.text for t in self.toks[snap[0] : self.i])
+            kind=kind,
+            landmark=landmark,
+            text=" ".join(t.text for t in self.toks[snap[0] : self.i]),
+            toward=looking if kind in ("from", "seated") else None,
         )
         self.notes.append(f"viewpoint: {kind} {landmark.target.describe()}")
         if self.at("comma"):
@@ -746,17 +774,38 @@ class ClauseParser(Grammar):
         lx = lexicon()
         return tok is not None and (tok.lemma in lx.viewpoint_verbs or tok.lemma in lx.facing_verbs)
 
-    def _second_view(self) -> None:
+    def _looked_at(self, lm: NP, start: int) -> Landmark | None:
+        """What the speaker looks at, when the standpoint's phrase (from ``start``) went
+        on with a verb of looking that it read as the standpoint's own relation
+        ("sitting at the bar facing the kitchen", "at the sink looking at the bar"):
+        that relation is taken out of the standpoint."""
+        lx = lexicon()
+        if not any(
+            t.lemma in lx.facing_verbs or t.tags.get("view") == "facing"
+            for t in self.toks[start : self.i]
+        ):
+            return None
+        kept, seen = _without_last_relation(tuple(lm.constraints))
+        lm.constraints = list(kept)
+        return seen
+
+    def _second_view(self) -> NP | None:
         """A second viewpoint phrase after the first ("… looking toward the windows",
         "… facing the monitor") says which way the speaker looks; the first (where they
-        stand) is kept and the second is consumed so it is not read as the target."""
+        stand) is kept and the second is consumed so it is not read as the target. What
+        the speaker looks at, when it is a thing or a room."""
         tok = self.peek()
         lx = lexicon()
         if tok is None:
-            return
+            return None
         looking = str(tok.tags.get("fverb", "")).split(" ")[0]  # "looking out": "look out"
-        if not (tok.has("view") or tok.lemma in lx.facing_verbs or looking in lx.facing_verbs):
-            return
+        facing = (
+            tok.tags.get("view") == "facing"
+            or tok.lemma in lx.facing_verbs
+            or looking in lx.facing_verbs
+        )
+        if not (tok.has("view") or facing):
+            return None
         snap = self.state()
         self.advance()
         verb_end = self.i
@@ -764,11 +813,14 @@ class ClauseParser(Grammar):
             self.advance()
         if self._heading_only(self.i > verb_end):
             self.notes.append("second viewpoint phrase: the speaker's heading")
-            return  # "standing in the doorway looking in, …", "… look to your right, …"
-        if not self.np_start() or self.parse_np(landmark=True) is None:
+            return None  # "standing in the doorway looking in, …", "… look to your right, …"
+        seen = self.parse_np(landmark=True) if self.np_start() else None
+        if seen is None:
             self.restore(snap)
-            return
+            return None
         self.notes.append("second viewpoint phrase: the speaker's heading")
+        # "coming into the office from the corridor": where one comes from is behind
+        return seen if facing and seen.kind in (OBJECT, ROOM) else None
 
     def _heading_only(self, particle: bool) -> bool:
         """Whether a second viewpoint phrase says only which way the speaker looks, with

@@ -331,6 +331,11 @@ def parse_uncached(text: str) -> ParsedQuery:
     for n, sentence in enumerate(sentences):
         tokens = tag(sentence)
         if clause.head is None:
+            if n > 0 and situation and clause.viewpoint is not None:
+                # "I am sitting on the couch watching the tv. What is behind me?": the
+                # first sentence was all standpoint; what the speaker does says no need
+                placed_speaker = True
+                words = _flat(sentences[n:])
             situation = _speaker_situation(sentence)
             opening = ClauseParser(tokens, notes)
             opening.more_sentences = n + 1 < len(sentences)

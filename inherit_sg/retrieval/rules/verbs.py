@@ -153,6 +153,8 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     elif g.np_start() and not g.at("floor"):
         obj = _objects(g, landmark=verb not in lx.light_verbs)
+    if obj is not None:
+        verb = _particle_after(g, verb, obj)  # "put some music on": "put on"
     by_means = _by_means(g, start)  # "what could I use to get the creases out …"
     if obj is not None and by_means:
         _take_source(g)
@@ -283,6 +285,29 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     )
     places = list(obj.places) if obj is not None else []
     return [made, *where, *places, *_done_from(g)], head
+
+
+# Particles that may stand after a verb's object ("put some music on", "turn it off"),
+# and words that may end the clause after them ("… on for me", "… on please").
+_TRAILING_PARTICLES = frozenset({"on", "off", "up", "down", "out", "away"})
+_CLAUSE_TAILS = frozenset({"please", "for", "now", "again", "then", "."})
+
+
+def _particle_after(g: Grammar, verb: str, obj: NP) -> str:
+    """``verb`` with the particle that follows its object at the end of the clause, when
+    the two name a sense with that object ("put some music on": "put on" music); else
+    ``verb``. The particle is consumed."""
+    tok = g.peek()
+    if tok is None or tok.text not in _TRAILING_PARTICLES or " " in verb or g.np_start(1):
+        return verb
+    after = g.peek(1)
+    if after is not None and not (after.has("comma", "and") or after.text in _CLAUSE_TAILS):
+        return verb
+    phrasal = f"{verb} {tok.text}"
+    if not has_own_sense(phrasal, obj.words):
+        return verb
+    g.advance()
+    return phrasal
 
 
 def _acts_on_particular(g: Grammar, start: int, obj: NP, words: list[str], aside: bool) -> bool:
