@@ -476,9 +476,8 @@ class Compiler:
                         f"{con.id}.landmark2", con.landmark2, vp, room=cons, con=con
                     )
             elif isinstance(con, Superlative) and con.landmark is not None:
-                spec.landmarks[con.id] = self._landmark(
-                    f"{con.id}.landmark", con.landmark, vp, room=cons, con=con
-                )
+                # "the bathroom sink closest to the front door": measured across rooms
+                spec.landmarks[con.id] = self._landmark(f"{con.id}.landmark", con.landmark, vp)
             found = resolve_matches(con, spec.layer, self.snap, self.sim)
             if found is not None:
                 spec.matches[con.id] = found

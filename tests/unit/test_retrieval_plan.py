@@ -119,3 +119,10 @@ def test_a_seated_viewpoint_and_what_it_looks_at_are_both_landmarks() -> None:
     assert {"viewpoint", "viewpoint/toward"} <= set(plan.target.landmarks)
     viewer = [s for s in plan.target.steps if s.op == "viewer"]
     assert viewer and "look at the best tv" in viewer[0].text
+
+
+def test_a_superlative_landmark_takes_no_shared_room() -> None:
+    # "the kitchen mug closest to the door": the door may be in any room
+    plan = compile_text("the mug in the kitchen closest to the door")
+    for spec in plan.target.landmarks.values():
+        assert not [c for c in spec.constraints if c.kind == "room"]

@@ -151,6 +151,8 @@ def _goal_start(words: list[Word]) -> tuple[int, int] | None:
         j = k + 1
         led = False
         while j < len(words) and words[j].text in _GOAL_WORDS:
+            if words[j].text == "front" and (j + 1 >= len(words) or words[j + 1].text != "of"):
+                break  # "wait at the front door": the door's own word, not "in front of"
             led = led or words[j].text not in _ARTICLES | {"right", "just", "directly"}
             if words[j].lemma in _REACHING:
                 led = True
