@@ -42,6 +42,8 @@ MP3D_MORE = {
     "mp3d_fourth": "mp3d_requests_fourth",
     "mp3d_fifth": "mp3d_requests_fifth",
     "mp3d_sixth": "mp3d_requests_sixth",
+    "mp3d_seventh": "mp3d_requests_seventh",
+    "mp3d_eighth": "mp3d_requests_eighth",
 }
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"

@@ -72,19 +72,6 @@ KeyframeView = Callable[[str], tuple[bytes | None, dict[str, Box]] | None]
 ROOM_REACH = 2.5
 
 
-def mask_distance(mask: RoomMask, x: float, y: float) -> float:
-    """Metres from world point (x, y) to the nearest covered cell of ``mask`` (0 on it;
-    infinite for an empty mask)."""
-    if mask.contains_xy(x, y):
-        return 0.0
-    rows, cols = np.nonzero(mask.cells)
-    if rows.size == 0:
-        return float("inf")
-    cx = mask.origin_x + (cols + 0.5) * mask.resolution
-    cy = mask.origin_y + (rows + 0.5) * mask.resolution
-    return float(np.sqrt(np.min((cx - x) ** 2 + (cy - y) ** 2)))
-
-
 def nearest_room(graph: SceneGraph, node: ObjectNode) -> str | None:
     """Closest room of the object's floor, within :data:`ROOM_REACH` of its mask
     (of its centre when it has none): objects on thresholds, in doorways or outside
@@ -96,7 +83,7 @@ def nearest_room(graph: SceneGraph, node: ObjectNode) -> str | None:
             if room.mask is None:
                 d = float(np.hypot(room.position[0] - x, room.position[1] - y))
             else:
-                d = mask_distance(room.mask, x, y)
+                d = room.mask.distance_xy(x, y)
             if d == 0.0:
                 return room.id
             if d < best_d:

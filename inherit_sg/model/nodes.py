@@ -57,6 +57,18 @@ class RoomMask:
         h, w = self.cells.shape
         return 0 <= r < h and 0 <= c < w and bool(self.cells[r, c])
 
+    def distance_xy(self, x: float, y: float) -> float:
+        """Metres from world point (x, y) to the nearest covered cell's centre (0 on a
+        covered cell; infinite for an empty mask)."""
+        if self.contains_xy(x, y):
+            return 0.0
+        rows, cols = np.nonzero(self.cells)
+        if rows.size == 0:
+            return float("inf")
+        cx = self.origin_x + (cols + 0.5) * self.resolution
+        cy = self.origin_y + (rows + 0.5) * self.resolution
+        return float(np.sqrt(np.min((cx - x) ** 2 + (cy - y) ** 2)))
+
     def to_bytes(self) -> bytes:
         """Compact binary form (bit-packed, zlib) for storage."""
         h, w = self.cells.shape

@@ -354,7 +354,7 @@ def usual_rooms(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
 
 # Weight of the room a landmark is taken to share with what is sought ("the cushion next
 # to the sofa in the family room": that sofa is in the family room too).
-SHARED_ROOM_WEIGHT = 0.5
+SHARED_ROOM_WEIGHT = 0.7
 
 
 def shared_room(

@@ -63,6 +63,11 @@ MIN_MATCH = 0.1
 # A matched room that is not the one a qualifier means ("the guest bathroom" for the
 # bathroom off the bedroom) keeps this share of its similarity.
 QUALIFIER_MISS = 0.6
+# "The big bathroom" with one room labelled a bathroom compares it with the rooms that
+# match at least this well (an alternative inferred at half the best type's probability).
+SIZE_PEER = 0.7
+# The label of a door the map knows leads outside (the way in for "the front bathroom").
+ENTRANCE_LABEL = "exterior door"
 # Room types a private room opens onto, and those a private bedroom has of its own.
 BEDROOMS = frozenset({"bedroom"})
 BATHROOMS = frozenset({"bathroom", "toilet"})
@@ -348,12 +353,42 @@ def _private_rooms(rooms: list[str], rtype: str, snap: MapSnapshot) -> set[str]:
     return {max(sized)[1]} if sized else set()
 
 
+def _peers(out: Matches, snap: MapSnapshot) -> list[str]:
+    """The matched rooms a qualifier chooses among: those matched at full strength, or,
+    when fewer than two are, those matched at least :data:`SIZE_PEER`."""
+    full = [r for r, (v, _) in out.items() if r in snap.rooms and v >= LABEL_LO]
+    if len(full) < 2:
+        full = [r for r, (v, _) in out.items() if r in snap.rooms and v >= SIZE_PEER]
+    return full
+
+
+def _by_entrance(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
+    """Lower the compared rooms (:func:`_peers`) other than the one nearest ("the front
+    bathroom") or farthest ("the back bedroom") from a door the map knows leads outside,
+    to :data:`QUALIFIER_MISS` of their similarity; nothing changes without such a door
+    or with fewer than two rooms."""
+    doors = [
+        p[:2]
+        for i, node in snap.objects.items()
+        if node.label == ENTRANCE_LABEL and (p := snap.position(i)) is not None
+    ]
+    masks = {r: m for r in _peers(out, snap) if (m := snap.rooms[r].mask) is not None}
+    if not doors or len(masks) < 2:
+        return
+    reach = sorted((min(m.distance_xy(x, y) for x, y in doors), r) for r, m in masks.items())
+    _, meant = reach[0] if qualifier == "front" else reach[-1]
+    where = "nearest" if qualifier == "front" else "farthest from"
+    _lower_unmeant(out, list(masks), {meant}, f"the {qualifier} one is meant ({where} the way in)")
+
+
 def _by_size(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     """Lower the fully matched rooms other than the largest ("the big bathroom", "the
     main bedroom") or the smallest ("the small bathroom") one, by floor area, to
-    :data:`QUALIFIER_MISS` of their similarity; only rooms matched at full strength (by
-    their label or best type) are compared, and nothing changes with fewer than two."""
-    full = [r for r, (v, _) in out.items() if r in snap.rooms and v >= LABEL_LO]
+    :data:`QUALIFIER_MISS` of their similarity; the rooms matched at full strength (by
+    their label or best type) are compared, or, when fewer than two are, those matched at
+    least :data:`SIZE_PEER` (a bathroom the map took for a toilet); nothing changes with
+    fewer than two."""
+    full = _peers(out, snap)
     sized = sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
     if len(sized) < 2:
         return
@@ -367,6 +402,9 @@ def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -
     place; nothing changes unless the matched rooms include both kinds."""
     if qualifier in ("largest", "smallest"):
         _by_size(out, qualifier, snap)
+        return
+    if qualifier in ("front", "back"):
+        _by_entrance(out, qualifier, snap)
         return
     matched = sorted(r for r in out if r in snap.rooms)
     private = _private_rooms(matched, rtype, snap)

@@ -49,7 +49,7 @@ MAX_COORDINATE = 1.0e6
 FACING_BACKOFF = 1.0
 # Landmark candidates within this quality of the best count as equally good; the one
 # nearest the group is taken.
-LANDMARK_TIE = 0.05
+LANDMARK_TIE = 0.02
 # Points closer than this (m) give no direction.
 COINCIDENT = 0.05
 # A camera axis whose horizontal part is shorter than this looks (almost) straight

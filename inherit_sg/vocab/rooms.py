@@ -321,7 +321,7 @@ def _room_name_in(phrase: str) -> str | None:
 
 
 # Kinds of room qualifier: whose the room is, and which by size ("the big bathroom").
-QUALIFIER_KINDS = ("private", "shared", "largest", "smallest")
+QUALIFIER_KINDS = ("private", "shared", "largest", "smallest", "front", "back")
 
 
 @lru_cache(maxsize=1)

@@ -9,6 +9,7 @@ from inherit_sg.retrieval.match import is_kind_of
 from inherit_sg.retrieval.plan import (
     CYPHER_OBJECTS_BY_LABEL,
     CYPHER_OBJECTS_IN_ROOMS,
+    SHARED_ROOM_WEIGHT,
     Compiler,
     QueryPlan,
     resolve_levels,
@@ -95,7 +96,7 @@ def test_a_landmark_shares_the_room_the_request_names() -> None:
     (key,) = [k for k in plan.target.landmarks if k != "viewpoint"]
     rooms = [c for c in plan.target.landmarks[key].constraints if c.kind == "room"]
     assert len(rooms) == 1 and rooms[0].type == "living room"
-    assert rooms[0].weight == pytest.approx(0.5) and rooms[0].id.endswith("~room")
+    assert rooms[0].weight == pytest.approx(SHARED_ROOM_WEIGHT) and rooms[0].id.endswith("~room")
     assert "too" in rooms[0].text
 
 

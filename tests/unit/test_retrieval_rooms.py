@@ -270,3 +270,52 @@ def test_room_qualifier_words() -> None:
     assert room_qualifier("the big bathroom") == "largest"
     assert room_qualifier("main bedroom") == "largest"
     assert room_qualifier("small bathroom") == "smallest"
+    assert room_qualifier("front bathroom") == "front"
+    assert room_qualifier("the back bedroom") == "back"
+
+
+def test_with_one_labelled_bathroom_the_big_one_is_compared_with_a_maybe_bathroom() -> None:
+    # only b is labelled a bathroom; w (a toilet that may be a bathroom, p 0.35 of 0.6)
+    # is compared by size all the same: "the small bathroom" is the toilet room
+    g = _graph({"b": ("bathroom", (("bathroom", 0.9),)), "w": ("toilet", TOILET)})
+    for key, (width, depth) in {"b": (2.0, 4.0), "w": (1.5, 2.0)}.items():
+        room = g.get(make_id(Layer.ROOM, key))
+        assert isinstance(room, RoomNode)
+        room.mask = RoomMask(
+            room.position[0],
+            0.0,
+            0.1,
+            np.ones((round(depth / 0.1), round(width / 0.1)), dtype=bool),
+        )
+    snap = build_snapshot(g, (1,))
+    small = _room(snap, "bathroom", "small bathroom")
+    assert small["room:w"][0] > small["room:b"][0]
+    assert "the smallest one is meant" in small["room:b"][1]
+
+
+def test_the_front_bathroom_is_the_one_nearest_the_way_in() -> None:
+    snap = _sized_bathrooms()
+    sure = label_sim(0.9)
+    assert "room:b" in snap.rooms and "room:s" in snap.rooms
+    # no door known to lead outside: the qualifier says nothing
+    plain = _room(snap, "bathroom", "front bathroom")
+    assert plain["room:b"][0] == plain["room:s"][0] == sure
+    g = _graph({"b": ("bathroom", (("bathroom", 0.9),)), "s": ("bathroom", (("bathroom", 0.9),))})
+    for key in ("b", "s"):
+        room = g.get(make_id(Layer.ROOM, key))
+        assert isinstance(room, RoomNode)
+        room.mask = RoomMask(room.position[0], 0.0, 0.1, np.ones((20, 20), dtype=bool))
+    door = ObjectNode(
+        make_id(Layer.OBJECT, "front-door"),
+        "exterior door",
+        (13.0, -0.5, 1.0),
+        BBox3D((12.5, -0.6, 0.0), (13.5, -0.4, 2.0)),
+        floor_id="floor:0",
+    )
+    g.add_or_update(door)
+    snap = build_snapshot(g, (1,))
+    front = _room(snap, "bathroom", "front bathroom")
+    assert front["room:s"][0] == sure and front["room:b"][0] == pytest.approx(QUALIFIER_MISS * sure)
+    assert "nearest the way in" in front["room:b"][1]
+    back = _room(snap, "bathroom", "back bathroom")
+    assert back["room:b"][0] == sure and back["room:s"][0] < sure

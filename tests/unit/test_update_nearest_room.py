@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from inherit_sg.mapping.update import ROOM_REACH, mask_distance, nearest_room
+from inherit_sg.mapping.update import ROOM_REACH, nearest_room
 from inherit_sg.model import BBox3D, ObjectNode, RoomMask, RoomNode, SceneGraph
 
 
@@ -36,10 +36,10 @@ def graph() -> SceneGraph:
 
 def test_mask_distance() -> None:
     mask = _mask(0, 0, 1, 4)
-    assert mask_distance(mask, 0.5, 2.0) == 0.0
-    assert mask_distance(mask, 3.0, 2.05) == pytest.approx(2.05, abs=1e-6)  # to a cell centre
+    assert mask.distance_xy(0.5, 2.0) == 0.0
+    assert mask.distance_xy(3.0, 2.05) == pytest.approx(2.05, abs=1e-6)  # to a cell centre
     empty = RoomMask(0.0, 0.0, 0.1, np.zeros((3, 3), dtype=bool))
-    assert mask_distance(empty, 0.0, 0.0) == float("inf")
+    assert empty.distance_xy(0.0, 0.0) == float("inf")
 
 
 def test_an_object_past_the_mapped_floor_joins_the_nearest_mask(graph: SceneGraph) -> None:

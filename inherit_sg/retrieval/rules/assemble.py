@@ -167,6 +167,34 @@ def _owns_bare_positions(head: NP, standpoint: Landmark, notes: list[str]) -> bo
     return given
 
 
+def _instrument(
+    head: NP, own: list[Constraint], functions: list[FunctionConstraint], notes: list[str]
+) -> list[Constraint]:
+    """``own`` without the relation that names the thing a need is met with ("wash my
+    hands in the sink", "check my outfit in the mirror": the sink, the mirror), which
+    then names the target; unchanged when the target is named or no such relation is."""
+    if head.kind not in (GENERIC, VAGUE) or head.labels or not functions:
+        return own
+    kinds = {label for f in functions for label in f.labels}
+    for con in own:
+        if not isinstance(con, RelationConstraint) or con.negated:
+            continue
+        named = [label for label in con.landmark.target.labels if label in kinds]
+        if named and con.predicate in _INSTRUMENT_PREDICATES:
+            head.kind, head.labels = OBJECT, named
+            head.words = con.landmark.target.noun.split() or head.words
+            notes.append(f"'{con.text}' names what the need is met with: the target")
+            own = [c for c in own if c is not con] + list(con.landmark.constraints)
+            return own
+    return own
+
+
+# Relations whose landmark may be what a need is met with ("in the sink", "on the towel");
+# not "with" ("a place to read with some light": the light helps) nor "near" ("relax
+# close to the armchair": somewhere by it).
+_INSTRUMENT_PREDICATES = frozenset({"inside", "on"})
+
+
 def _standpoint(clause: Clause) -> Viewpoint | None:
     """The request's viewpoint when it is a thing the speaker stands at or sits on; None
     for a room, or a place one leaves ("as you come out of the kitchen, …")."""
@@ -262,6 +290,7 @@ def assemble(
         elif functions:
             head.kind, head.labels = GENERIC, []
             own = [c for c in own if c.kind != "attribute"]
+    own = _instrument(head, own, functions, notes)
     head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]
     target = head.target()
     if head.kind == ONE and functions:

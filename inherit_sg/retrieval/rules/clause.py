@@ -666,7 +666,8 @@ class ClauseParser(Grammar):
         looking = seen.landmark() if seen is not None else looked
         opener = opener or cue.text.split()[0] in _VIEW_OPENERS
         moving = cue.lemma in lx.viewpoint_verbs  # "walk to …", not "face …"
-        if lm is not None and not opener and not self._more_follows(moving):
+        standing = kind in ("from", "seated")
+        if lm is not None and not opener and not self._more_follows(moving, standing):
             self.restore(snap)  # "look at the clock on the wall": the clock is sought
             return False
         landmark = self._viewpoint_landmark(lm)
@@ -674,12 +675,28 @@ class ClauseParser(Grammar):
         if group is not None and group.kind == OBJECT and group.plural and group.labels:
             # "looking at the sinks from the door, the one furthest away": the sinks
             self.group = self.group or replace(group, constraints=[], places=[])
-        out.viewpoint = Viewpoint(
-            kind=kind,
-            landmark=landmark,
-            text=" ".join(t.text for t in self.toks[snap[0] : self.i]),
-            toward=looking if kind in ("from", "seated") else None,
-        )
+        said = " ".join(t.text for t in self.toks[snap[0] : self.i])
+        earlier = out.viewpoint
+        if (
+            earlier is not None
+            and kind == "facing"
+            and earlier.kind in ("from", "seated", "back_to")
+        ):
+            # "with my back to the sink, facing the bar": standing at the sink, looking
+            # at the bar
+            out.viewpoint = Viewpoint(
+                kind="from" if earlier.kind == "back_to" else earlier.kind,
+                landmark=earlier.landmark,
+                text=f"{earlier.text}, {said}",
+                toward=landmark,
+            )
+        else:
+            out.viewpoint = Viewpoint(
+                kind=kind,
+                landmark=landmark,
+                text=said,
+                toward=looking if kind in ("from", "seated") else None,
+            )
         self.notes.append(f"viewpoint: {kind} {landmark.target.describe()}")
         if self.at("comma"):
             self.advance()
@@ -836,13 +853,24 @@ class ClauseParser(Grammar):
         self.i += k
         return True
 
-    def _more_follows(self, moving: bool = False) -> bool:
+    def _more_follows(self, moving: bool = False, standing: bool = False) -> bool:
         """Whether the request goes on after a viewpoint phrase (else that phrase names
         the target: "look at the clock"). After a phrase of ``moving`` ("walk to the
-        stool") a bare place that follows places its thing: it goes on no further."""
+        stool") a bare place that follows places its thing: it goes on no further. After a
+        phrase of ``standing`` at or sitting on a thing, a room may follow first ("sitting
+        on the sofa in the family room the cushion …")."""
         tok = self.peek()
         if tok is None:
             return self.more_sentences  # "Face the radiator. The picture to its left."
+        room_end = self._room_after() if moving or standing else 0
+        if room_end:
+            # "sitting on the sofa in the family room, the cushion …": the room is the
+            # request's; what follows it says whether the request goes on (not after a
+            # verb of looking: "look at the box under the telly in the lounge and …")
+            after = self.peek(room_end)
+            return after is not None and (
+                after.has("comma", "and", "anaphor", "det", "one") or self.np_start(room_end)
+            )
         if tok.has("comma", "and"):
             if moving and self._place_of_it_follows():
                 return False  # "walk to the stool, over by the back door"
@@ -850,6 +878,16 @@ class ClauseParser(Grammar):
                 return False  # "you can reach the light switch, it's right by the door"
             return self.peek(1) is not None or self.more_sentences
         return tok.has("anaphor", "det", "be", "one") or self.np_start()
+
+    def _room_after(self) -> int:
+        """How many tokens a room phrase here takes ("in the family room", "in the den"),
+        0 when none stands here."""
+        if not self.at("prep") or self.text_at() not in ("in", "inside"):
+            return 0
+        k = 1
+        while self.at("det", "adj", k=k) and k < 4:
+            k += 1
+        return k + 1 if self.at("room", k=k) else 0
 
     def _it_placed_next(self) -> bool:
         """Whether "it is" and a place follow the comma here ("…, it's right by the

@@ -222,6 +222,13 @@ class Grammar(Cursor):
                 # "the left chair", "the right one"; "…, not the right" (the one on it);
                 # "the far one", "the near one" (a "far chair" may be a kind's name)
                 np.direction = tok.tags["dir"]
+            elif (
+                tok.has("dir")
+                and tok.tags["dir"] in ("front", "back")
+                and self.at("room", k=1)
+                and not self.at("noun", k=1)  # "the back stairs": a thing too
+            ):
+                np.room_side = str(tok.tags["dir"])  # "the front bathroom": which room
             elif tok.has("middle") and self._head_follows(1) and not self.at("floor_noun", k=1):
                 np.superlative = "middle"  # "the middle chair", "the centre one"
             elif tok.has("shade") and self.at("colour", k=1):
@@ -1084,8 +1091,9 @@ class Grammar(Cursor):
             self.at("det", k=end) and self.np_start(end)
         ):
             return False  # "to the left of the sofa", "in near the doorway"
-        if self.at("noun", "unk", k=end):
-            return False  # "beneath the left window": the side is the landmark's
+        if self.at("noun", "unk", "room", k=end):
+            return False  # "beneath the left window": the side is the landmark's; "in the
+            # front bathroom": which bathroom
         np.direction = self.toks[self.i + k].tags["dir"]
         self.i += end
         return True
@@ -1592,8 +1600,8 @@ class Grammar(Cursor):
             k = 1
         while self.at("det", "seeker", k=k) and k < 3:
             k += 1
-        if not self.at("dir", k=k) or self.at("of", k=k + 1):
-            return None
+        if not self.at("dir", k=k) or self.at("of", "room", k=k + 1):
+            return None  # "in the front bathroom": which bathroom, not a side
         side = str(self.toks[self.i + k].tags["dir"])
         if k == 0 or self.at("to", k=0) or self.text_at() in ("on", "at"):
             self.i += k + 1
@@ -1618,6 +1626,8 @@ class Grammar(Cursor):
             None,
         )
         name = f"{size} {np.noun}" if size in ("small", "large") and np.noun else np.noun
+        if np.room_side and name:
+            name = f"{np.room_side} {name}"  # "the front bathroom": the one by the entrance
         return RoomConstraint(
             type=np.room_type, name=name, negated=neg, text=text,
             weight=weighted("room", stress), beside=np.beside,

@@ -34,6 +34,7 @@ class NP:
     other: bool = False
     room_type: str | None = None
     beside: str = ""  # a room's neighbour: "the bathroom off the hall" (room phrases only)
+    room_side: str = ""  # "the front bathroom", "the back bedroom" (room phrases only)
     floor: int | str | None = None
     superlative: str | None = None
     ordinal: int | None = None

@@ -48,8 +48,8 @@ def _denied(words: list[Word], k: int) -> bool:
 
 def _terms(words: list[Word], heads_only: bool) -> set[str]:
     """Words and their lemmas (only those that do not modify a noun when ``heads_only``:
-    "the dark cabinets" states nothing dark, nor does "dark brown", a shade), and every
-    pair of words ("upper floor")."""
+    "the dark cabinets" states nothing dark, nor does "dark brown", a shade), every pair
+    of words ("upper floor") and every run of three to five ("sun is in my eyes")."""
     colours = colour_words()
     heads = [
         w
@@ -64,8 +64,12 @@ def _terms(words: list[Word], heads_only: bool) -> set[str]:
     terms = {w.text for w in heads} | {w.lemma for w in heads}
     texts = [w.text for w in words]
     lemmas = [w.lemma for w in words]
+    runs = {" ".join(texts[i : i + n]) for n in (3, 4, 5) for i in range(len(texts) - n + 1)}
     return (
-        terms | {f"{a} {b}" for a, b in pairwise(texts)} | {f"{a} {b}" for a, b in pairwise(lemmas)}
+        terms
+        | {f"{a} {b}" for a, b in pairwise(texts)}
+        | {f"{a} {b}" for a, b in pairwise(lemmas)}
+        | runs
     )
 
 
@@ -172,6 +176,17 @@ def _without_opening_fillers(words: list[Word]) -> list[Word]:
     return words[k:] if k < len(words) else words
 
 
+# Words that open a question run on after a statement with no comma.
+_QUESTION_WORDS = frozenset({"what", "where", "which", "anything", "something"})
+
+
+def _question_starts(words: list[Word], i: int) -> bool:
+    """Whether an unpunctuated question starts at word ``i`` of a statement ("too bright
+    in the den what can i pull down"), not a clause a verb takes ("i don't know what time
+    it is")."""
+    return i > 2 and words[i].text in _QUESTION_WORDS and words[i - 1].pos not in ("VERB", "AUX")
+
+
 def split_problem(
     sentences: list[list[Word]],
 ) -> tuple[FunctionConstraint | None, list[list[Word]]]:
@@ -179,7 +194,11 @@ def split_problem(
     if not sentences:
         return None, sentences
     words = _without_opening_fillers(sentences[0])
-    cut = next((i for i, w in enumerate(words) if w.text == ","), len(words))
+    # the statement ends at a comma, or where an unpunctuated question starts ("too
+    # bright in the den what can i pull down")
+    cut = next(
+        (i for i, w in enumerate(words) if w.text == "," or _question_starts(words, i)), len(words)
+    )
     first = words[:cut]
     if not _is_statement(first):
         return None, sentences
@@ -221,6 +240,17 @@ def _place_part(words: list[Word]) -> list[Word]:
     for i, w in enumerate(words):
         if w.text in places and (w.pos in ("ADP", "ADV") or w.text.endswith("stairs")):
             tail = words[i:]
-            if len(tail) > 1 or w.text.endswith("stairs"):
+            if w.text.endswith("stairs"):
+                return tail
+            if len(tail) > 1 and not _body_part(tail):
                 return tail
     return []
+
+
+# "The sun is in my eyes": a place on the speaker, not in the building.
+_BODY_PARTS = frozenset({"eye", "eyes", "face", "ear", "ears", "nose", "head", "back", "hand"})
+
+
+def _body_part(place: list[Word]) -> bool:
+    """Whether a place phrase is on the speaker's body ("in my eyes")."""
+    return len(place) > 2 and place[1].text in ("my", "our") and place[2].text in _BODY_PARTS

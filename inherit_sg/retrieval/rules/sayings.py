@@ -30,10 +30,10 @@ _MISSPELT_NOT = re.compile(
     r"|\bdos[e]?n'?t\b",
     re.IGNORECASE,
 )
-# "… while I'm on the sofa", "when I'm sitting at my desk": where the speaker is; the
-# thing sought is near it, not on it.
+# "… while I'm on the sofa", "when I'm sitting at my desk", "… and I'm on the couch":
+# where the speaker is; the thing sought is near it, not on it.
 _WHILE_I_AM_AT = re.compile(
-    r"\b(?:while|when|whilst)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
+    r"\b(?:while|when|whilst|and)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
     re.IGNORECASE,
 )
 # "there's no way to miss the radiator": it cannot be missed, as "you can't miss" says.
@@ -119,6 +119,14 @@ _NOTHING_PUT = re.compile(
     re.IGNORECASE,
 )
 
+# "I need a wee really bad": the toilet ("a wee dog" is a small one).
+_NEED_A_WEE = re.compile(
+    r"\b(need|needs|needed|want|have|having|go\s+for|going\s+for|dying\s+for|desperate\s+for)"
+    r"\s+a\s+(?:wee|pee|wee-wee|poo)\b(?=\s*(?:[,.;!?]|$)|\s+(?:really|so|now|asap|and|but|badly|"
+    r"urgently|please|where|which|take|quick|quickly|right)\b)",
+    re.IGNORECASE,
+)
+
 
 def _the_only_one(match: re.Match[str]) -> str:
     """ "no other chair is red" → "the red chair", for a colour or a material; other
@@ -142,6 +150,7 @@ SAYINGS: tuple[tuple[re.Pattern[str], Replacement], ...] = (
     (_MISSPELT_NOT, lambda m: f"{m.group(2) or 'does'}n't"),
     (_NOTHING_PUT, r"\1 "),
     (_WHILE_I_AM_AT, "near "),
+    (_NEED_A_WEE, r"\1 the toilet"),
     (_NO_WAY_TO_MISS, "you can't miss"),
     (_DOUBLE_NO, "has no"),
     (_NO_OTHER_IS, _the_only_one),
