@@ -440,6 +440,13 @@ class ClauseParser(Grammar):
                     self._unchecked_feature(out.head)
             elif self.np_start():
                 self._noun_phrase(out, refine)
+            elif (
+                tok.tags.get("view") == "back_to"
+                and tok.text.startswith(("with ", "my ", "our "))
+                and out.viewpoint is None
+                and self._viewpoint(out)
+            ):
+                pass  # "I'm at the copier with my back to the hallway door"
             else:
                 if not tok.has(*_SKIP):
                     self.notes.append(f"skipped {tok.text!r}")

@@ -127,6 +127,13 @@ _NEED_A_WEE = re.compile(
     re.IGNORECASE,
 )
 
+# "mum and dad's bed", "mom n dads room": the parents' (one owner, as the grammar reads).
+_BOTH_PARENTS = re.compile(
+    r"\b(?:my\s+)?(?:mum|mom|mommy|mummy|mam|dad|daddy|papa|mama)\s+(?:and|n|&)\s+"
+    r"(?:mum|mom|mommy|mummy|mam|dad|daddy|papa|mama)(?:'s|s'|s)(?=\s)",
+    re.IGNORECASE,
+)
+
 
 def _the_only_one(match: re.Match[str]) -> str:
     """ "no other chair is red" → "the red chair", for a colour or a material; other
@@ -151,6 +158,7 @@ SAYINGS: tuple[tuple[re.Pattern[str], Replacement], ...] = (
     (_NOTHING_PUT, r"\1 "),
     (_WHILE_I_AM_AT, "near "),
     (_NEED_A_WEE, r"\1 the toilet"),
+    (_BOTH_PARENTS, "my parents'"),
     (_NO_WAY_TO_MISS, "you can't miss"),
     (_DOUBLE_NO, "has no"),
     (_NO_OTHER_IS, _the_only_one),
