@@ -31,6 +31,12 @@ NAMED_KINDS = frozenset({"label", "function"})
 HINT_WEIGHT = 0.4
 
 
+def is_hint(kind: str, polarity: int, weight: float) -> bool:
+    """Whether a term of this kind, polarity and weight is only a hint: a positive
+    relation of weight at most :data:`HINT_WEIGHT` (where the speaker stands)."""
+    return kind == "relation" and polarity > 0 and weight <= HINT_WEIGHT
+
+
 @dataclass
 class Column:
     """One constraint's term for every candidate of a table (row order)."""
@@ -47,8 +53,8 @@ class Column:
         return self.polarity * self.weight * self.sims
 
     def is_hint(self) -> bool:
-        """A positive relation this weak only hints (where the speaker stands)."""
-        return self.kind == "relation" and self.polarity > 0 and self.weight <= HINT_WEIGHT
+        """Whether this column is only a hint (:func:`is_hint`)."""
+        return is_hint(self.kind, self.polarity, self.weight)
 
     def term(self, row: int) -> Term:
         """The term of one row."""

@@ -35,7 +35,7 @@ from inherit_sg.retrieval.constraints import (
 )
 from inherit_sg.retrieval.graph_checks import PROXIMITY_NOTE
 from inherit_sg.retrieval.plan import NodeSpec
-from inherit_sg.retrieval.score_table import HINT_WEIGHT
+from inherit_sg.retrieval.score_table import is_hint
 from inherit_sg.retrieval.scoring import Scored
 
 # Share of the box kept (centred) when naming a crop's colour: borders show background.
@@ -159,7 +159,7 @@ def graph_failures(ev: Evidence) -> list[str]:
             continue
         if term.kind not in ("relation", "room", "area"):
             continue
-        if term.kind == "relation" and term.polarity > 0 and term.weight <= HINT_WEIGHT:
+        if is_hint(term.kind, term.polarity, term.weight):
             continue  # a hint (near where the speaker stands) is no requirement
         unsupported = term.sim <= 0.0 or term.why.startswith(PROXIMITY_NOTE)
         if term.polarity > 0 and unsupported:

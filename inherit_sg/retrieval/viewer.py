@@ -292,15 +292,13 @@ class ViewFinder:
         if towards is None:
             return None, f"(viewpoint '{kind} {name}': {lid} stands among the candidates) "
         label = getattr(self.snap.node(lid), "label", "") or name
-        looked = self._looking_at(vp, lid, there)
+        looked = self._looking_at(vp, lid, label, there)
         if looked is not None:
             return looked, ""
-        if vp.kind == "seated":
-            inward = self._into_room(lid, there)
-            if inward is not None:
-                view = View((float(there[0]), float(there[1])), inward, "viewpoint", "")
-                why = f"seated on {label} {lid}, looking into its room"
-                return View(view.position, view.forward, view.source, why, lid), ""
+        inward = self._into_room(lid, there) if vp.kind == "seated" else None
+        if inward is not None:
+            why = f"seated on {label} {lid}, looking into its room"
+            return View((float(there[0]), float(there[1])), inward, "viewpoint", why, lid), ""
         if vp.kind == "facing":
             pos = centroid - np.asarray(towards) * (spread + FACING_BACKOFF)
             view = View((float(pos[0]), float(pos[1])), towards, "viewpoint", "")
@@ -312,10 +310,10 @@ class ViewFinder:
             view = View((float(centroid[0]), float(centroid[1])), away, "viewpoint", "")
         return View(view.position, view.forward, view.source, f"{kind} {label} {lid}", lid), ""
 
-    def _looking_at(self, vp: Viewpoint, lid: str, there: np.ndarray) -> View | None:
-        """Standing (or seated) at ``lid`` and looking at what the request says the
-        speaker looks at ("… looking at the bar"): its best candidate nearest the
-        standpoint. None when the request says none or the map has none."""
+    def _looking_at(self, vp: Viewpoint, lid: str, label: str, there: np.ndarray) -> View | None:
+        """Standing (or seated) at ``lid`` (called ``label``) and looking at what the
+        request says the speaker looks at ("… looking at the bar"): its best candidate
+        nearest the standpoint. None when the request says none or the map has none."""
         if vp.toward is None or vp.kind not in ("from", "seated"):
             return None
         marks = [(i, q) for i, q in self.toward if q >= TOWARD_QUALITY]
@@ -324,7 +322,6 @@ class ViewFinder:
         heading = _unit(np.asarray(pos, float)[:2] - there) if pos is not None else None
         if seen is None or heading is None:
             return None
-        label = getattr(self.snap.node(lid), "label", "") or lid
         what = getattr(self.snap.node(seen), "label", "") or seen
         why = f"at {label} {lid}, looking at {what} {seen}"
         return View((float(there[0]), float(there[1])), heading, "viewpoint", why, lid)

@@ -89,10 +89,10 @@ _WAIT_PLACES = _BESIDE | {"on", "behind", "under", "beneath", "opposite"}
 _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back", "across"})
 
 
-# Last words of a viewpoint phrase that needs no landmark ("when you walk in", "as you
-# come up"), so that a thing and "is" after it open the main clause.
 # Prepositions that seat the speaker on what follows ("sitting on the sofa", "in bed").
 _SEATS = frozenset({"on", "in", "upon", "onto", "into"})
+# Last words of a viewpoint phrase that needs no landmark ("when you walk in", "as you
+# come up"), so that a thing and "is" after it open the main clause.
 _COMPLETE_VIEW_ENDS = frozenset({"in", "inside", "enter", "up", "down", "around", "round", "out"})
 # "before I head out …": a time clause, context rather than the target.
 _TIME_WORDS = frozenset({"before", "after", "once", "until"})
@@ -702,7 +702,7 @@ class ClauseParser(Grammar):
                 kind=kind,
                 landmark=landmark,
                 text=said,
-                toward=looking if kind in ("from", "seated") else None,
+                toward=looking if standing else None,
             )
         self.notes.append(f"viewpoint: {kind} {landmark.target.describe()}")
         if self.at("comma"):
