@@ -32,6 +32,7 @@ from inherit_sg.retrieval.result import QueryResult, candidate_dict, node_summar
 from inherit_sg.retrieval.scoring import Scored, Scorer
 from inherit_sg.retrieval.similarity import Embedder, PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, load_snapshot, map_version
+from inherit_sg.retrieval.stand_in import absent, place_found, said_place
 from inherit_sg.retrieval.trace import describe_query, explain_ranking
 from inherit_sg.retrieval.verify import (
     Evidence,
@@ -243,12 +244,21 @@ class QueryEngine:
     ) -> Sequence[Scored]:
         """Ranked target candidates of ``plan``: the viewpoint's landmark first, then
         the other landmarks, recursively; ``viewer`` is the robot's pose, if known."""
+        return self._rank_spec(plan.target, trace, view, viewer)
+
+    def _rank_spec(
+        self,
+        spec: NodeSpec,
+        trace: list[str] | None,
+        view: tuple[MapSnapshot, GraphChecker] | None,
+        viewer: ViewerPose | None,
+    ) -> Sequence[Scored]:
         snap, checker = view or self.snapshot()
         gen = CandidateGenerator(self.store, snap, self.similarity)
         keyframes, placement = self.helpers(snap)
         scorer = Scorer(snap, checker, robot=viewer, keyframes=keyframes, placement=placement)
         log = trace if trace is not None else []
-        return rank_spec(plan.target, scorer, gen.generate, log)
+        return rank_spec(spec, scorer, gen.generate, log)
 
     # --------------------------------------------------------------- query
     def query(
@@ -287,13 +297,24 @@ class QueryEngine:
             return self._finish(result, trace, timings, start)
         feature = self.image_feature(image, trace) if image is not None else None
         plan = Compiler(snap, self.similarity).compile(parsed, feature)
+        spec = plan.target
         ranked = self.rank(plan, trace, view, viewer=viewer)
+        likeness = absent(spec, ranked)
+        place = said_place(spec, likeness) if likeness is not None else None
+        if place is not None:
+            placed = self._rank_spec(place, trace, view, viewer)
+            if place_found(place, placed):
+                trace.append(
+                    f"no {parsed.target.describe()} in the map: answering where the request "
+                    f"places it, the {place.target.describe()}"
+                )
+                spec, ranked = place, placed
         trace.extend(explain_ranking(snap, ranked, k))
         timings["retrieve"] = _ms(t1)
         t2 = time.perf_counter()
         do_verify = self.config.retrieval.verify if verify is None else verify
-        live = ranked if _answerable(plan.target, ranked) else []
-        chosen, verified = self._choose(snap, plan.target, live, text, do_verify, trace)
+        live = ranked if _answerable(spec, ranked) else []
+        chosen, verified = self._choose(snap, spec, live, text, do_verify, trace)
         timings["verify"] = _ms(t2)
         if chosen is not None:
             result.answer = {

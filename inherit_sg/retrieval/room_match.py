@@ -66,6 +66,9 @@ QUALIFIER_MISS = 0.6
 # "The big bathroom" with one room labelled a bathroom compares it with the rooms that
 # match at least this well (an alternative inferred at half the best type's probability).
 SIZE_PEER = 0.7
+# A room a "next to" phrase names, when the map has no room of its type, may be one of
+# a type this closely related to it (the entryway for "the hall").
+RELATED_ANCHOR = 0.6
 # The label of a door the map knows leads outside (the way in for "the front bathroom").
 ENTRANCE_LABEL = "exterior door"
 # Room types a private room opens onto, and those a private bedroom has of its own.
@@ -305,7 +308,12 @@ def _anchor_rooms(beside: str, snap: MapSnapshot) -> set[str]:
     door")."""
     rtype = room_type(beside)
     if rtype is not None:
-        return {r for r, t in snap.room_types.items() if t == rtype}
+        found = {r for r, t in snap.room_types.items() if t == rtype}
+        if found:
+            return found
+        # "the bathroom off the hall" in a map with an entryway and no hallway
+        near = {t for t, v in related(rtype).items() if v >= RELATED_ANCHOR}
+        return {r for r, t in snap.room_types.items() if t in near}
     kinds = set(object_vocab.labels_for(beside))
     if not kinds:
         return set()

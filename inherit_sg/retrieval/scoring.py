@@ -47,6 +47,7 @@ from inherit_sg.retrieval.constraints import (
     LabelConstraint,
     PlacementConstraint,
     RelationConstraint,
+    RoomConstraint,
     Superlative,
 )
 from inherit_sg.retrieval.directions import VIEW_PREDICATES, directional_all
@@ -287,9 +288,12 @@ class Scorer:
             table.set(cid, found)
         self._heights(spec, table)
         self._floor(spec, table, notes)
+        roomed = any(isinstance(c, RoomConstraint) and not c.negated for c in spec.scored())
         for sup in spec.scored():
             if isinstance(sup, Superlative):
-                self._superlative(sup, table, landmarks.get(sup.id, ()), notes, viewing)
+                self._superlative(
+                    sup, table, landmarks.get(sup.id, ()), notes, viewing, in_view=not roomed
+                )
         return table.ranked(self._order(table)), notes
 
     def _order(self, table: ScoreTable) -> np.ndarray:
@@ -615,13 +619,23 @@ class Scorer:
         landmarks: Landmarks,
         notes: list[str],
         viewing: _Viewing,
+        *,
+        in_view: bool = True,
     ) -> None:
         """Rank the best-scoring tier by ``con``'s measure: the tier's rows are worked
-        on as :class:`Scored` s and their ``con`` terms written back to the table."""
+        on as :class:`Scored` s and their ``con`` terms written back to the table. With
+        ``in_view`` (the request names no room), an ordinal seen from a viewpoint counts
+        among the candidates in view of it before any others."""
         table.add(con)
         live = np.flatnonzero(table.h_floor != 0)
         if not len(live):
             return
+        if in_view and con.measure in ("ordinal", "middle"):
+            # "the little table on the left" seen from the bed: the tables in the bed's
+            # room are the ones counted, however a table elsewhere scores
+            seen = self._in_view(con, [table.ids[int(r)] for r in live], viewing)
+            if seen:
+                live = np.array([r for r in live if table.ids[int(r)] in seen], dtype=int)
         scores = table.scores(hints=False)[live]
         best = scores.max()
         rows = [int(r) for r, s in zip(live, scores, strict=True) if s >= best - SUPERLATIVE_TIER]
@@ -672,28 +686,38 @@ class Scorer:
         """With a viewpoint set, the candidates in the room of the landmark the viewer
         stands at or faces, or within :data:`VIEW_REACH` of it (all of them without one,
         or when none is there)."""
-        if viewing.finder.viewpoint is None or len(tier) < 2:
+        if len(tier) < 2:
             return tier
-        view = viewing.view([c.id for c in tier], con.id)
-        anchor = view.anchor if view is not None else None
-        spot = self.snap.position(anchor) if anchor else None
-        if anchor is None or spot is None:
+        seen = self._in_view(con, [c.id for c in tier], viewing)
+        if seen is None:
             return tier
-        room = self.snap.room_of.get(anchor)
-        near = [
-            c
-            for c in tier
-            if (room is not None and self.snap.room_of.get(c.id) == room)
-            or (
-                (here := self.snap.position(c.id)) is not None
-                and math.dist(here[:2], spot[:2]) <= VIEW_REACH
-            )
-        ]
+        near = [c for c in tier if c.id in seen]
         return _compared(
             con, tier, near, 1, notes,
             left_out="out of the viewpoint's room: not ordered",
             note=f"the {len(near)} of {len(tier)} candidates in the viewpoint's room are ordered",
         )  # fmt: skip
+
+    def _in_view(self, con: Superlative, ids: list[str], viewing: _Viewing) -> set[str] | None:
+        """Of ``ids``, those in the room of the landmark a viewpoint stands at or faces,
+        or within :data:`VIEW_REACH` of it; None without a viewpoint landmark."""
+        if viewing.finder.viewpoint is None or not ids:
+            return None
+        view = viewing.view(ids, con.id)
+        anchor = view.anchor if view is not None else None
+        spot = self.snap.position(anchor) if anchor else None
+        if anchor is None or spot is None:
+            return None
+        room = self.snap.room_of.get(anchor)
+        return {
+            i
+            for i in ids
+            if (room is not None and self.snap.room_of.get(i) == room)
+            or (
+                (here := self.snap.position(i)) is not None
+                and math.dist(here[:2], spot[:2]) <= VIEW_REACH
+            )
+        }
 
     def _near_landmarks(
         self, con: Superlative, tier: list[Scored], landmarks: Landmarks, notes: list[str]

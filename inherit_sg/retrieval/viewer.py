@@ -261,21 +261,34 @@ class ViewFinder:
     ) -> str | None:
         """The best viewpoint landmark candidate (of ``marks``, by default the
         standpoint's), nearest the group among equals (on the group's floor when one
-        there is as good)."""
+        there is as good). A standpoint in a room with something the speaker says they
+        look at beats one without ("on the settee in the den looking at the telly": the
+        den with the telly)."""
+        standpoint = marks is None
         marks = self.marks if marks is None else marks
         if not marks:
             return None
         best = max(q for _, q in marks)
         levels = Counter(self.snap.level_of(n) for n in group)
         level = levels.most_common(1)[0][0]
-        ranked: list[tuple[int, float, str]] = []
+        seen_rooms = self._toward_rooms() if standpoint else set()
+        ranked: list[tuple[int, int, float, str]] = []
         for lid, q in marks:
             pos = self.snap.position(lid)
             if q < best - LANDMARK_TIE or pos is None or lid in group:
                 continue
             other_floor = int(level is not None and self.snap.level_of(lid) != level)
-            ranked.append((other_floor, math.dist(pos[:2], centroid), lid))
-        return min(ranked)[2] if ranked else None
+            unseen = int(bool(seen_rooms) and self.snap.room_of.get(lid) not in seen_rooms)
+            ranked.append((other_floor, unseen, math.dist(pos[:2], centroid), lid))
+        return min(ranked)[3] if ranked else None
+
+    def _toward_rooms(self) -> set[str]:
+        """Rooms holding a good candidate for what the speaker looks at (none when the
+        request says nothing about it)."""
+        if self.viewpoint is None or self.viewpoint.toward is None:
+            return set()
+        rooms = (self.snap.room_of.get(i) for i, q in self.toward if q >= TOWARD_QUALITY)
+        return {r for r in rooms if r is not None}
 
     def _from_viewpoint(
         self, group: tuple[str, ...], centroid: np.ndarray, spread: float

@@ -13,12 +13,15 @@ from inherit_sg.vocab import VocabularyError, load_table, string_list
 @dataclass(frozen=True)
 class FunctionSense:
     """One way of asking for ``function``: verbs (empty = any verb or none), object words
-    (empty = the verb's default sense) and the likely kinds, most likely first."""
+    (empty = the verb's default sense) and the likely kinds, most likely first.
+    ``stranded`` are "verb particle" phrases read only where the particle ends a purpose
+    clause ("something to stand on"), never elsewhere ("a lamp standing on the floor")."""
 
     function: str
     verbs: tuple[str, ...]
     objects: tuple[str, ...]
     kinds: tuple[str, ...]
+    stranded: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -77,6 +80,7 @@ def senses() -> tuple[FunctionSense, ...]:
                 verbs=string_list(entry, "verbs", where),
                 objects=string_list(entry, "objects", where),
                 kinds=_kinds(entry, groups(), where),
+                stranded=string_list(entry, "stranded", where),
             )
         )
     return tuple(out)

@@ -55,3 +55,14 @@ def test_a_room_next_to_a_thing() -> None:
     other = next(c for c in ranked if c.id == "obj:towel_b")
     why = " ".join(t.why for t in other.terms.values())
     assert "by the front door is meant" in why
+
+
+def test_the_hall_is_the_entryway_when_the_map_has_no_hallway() -> None:
+    # the map took the hall bathroom for a toilet and has no room it calls a hallway
+    rooms = {**ROOMS, "bath_a": ("toilet", 3.0)}
+    snap = floor_snapshot(OBJECTS, rooms, DOORS)
+    ranked, _ = rank(snap, parse_rules("bring me the towels from the bathroom off the hall"))
+    assert ranked[0].id == "obj:towel_a"
+    # no qualifier: the room the map calls a bathroom comes first
+    ranked, _ = rank(snap, parse_rules("the towel in the bathroom"))
+    assert ranked[0].id == "obj:towel_b"

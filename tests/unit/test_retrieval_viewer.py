@@ -241,3 +241,36 @@ def test_room_centre_looks_at_the_group() -> None:
     at_centre = finder.view(["obj:t1"])
     assert at_centre is not None and at_centre.forward == (0.0, 1.0)
     assert finder.view([]) is None
+
+
+def test_a_standpoint_in_the_room_of_what_is_looked_at_wins() -> None:
+    from tests.unit.retrieval_fixtures import floor_snapshot
+
+    # "sitting on the settee in the den looking at the telly": two settees match, only
+    # one room has a telly; the other settee is nearer the candidates
+    snap = floor_snapshot(
+        [
+            ("sofa_den", "sofa", 0.0, 0.0, "den"),
+            ("sofa_tv", "sofa", 10.0, 0.0, "tv"),
+            ("telly", "tv", 12.0, 0.0, "tv"),
+            ("cushion_den", "cushion", 1.0, 0.0, "den"),
+            ("cushion_tv", "cushion", 9.0, 0.0, "tv"),
+        ],
+        {"den": ("family room", 0.0), "tv": ("tv room", 10.0)},
+    )
+    vp = Viewpoint(
+        kind="seated",
+        landmark=Landmark(target=Target(labels=("sofa",), noun="settee")),
+        toward=Landmark(target=Target(labels=("tv",), noun="telly")),
+    )
+    marks = [("obj:sofa_den", 1.0), ("obj:sofa_tv", 1.0)]
+    finder = ViewFinder(
+        snap, viewpoint=vp, viewpoint_marks=marks, toward_marks=[("obj:telly", 1.0)]
+    )
+    view = finder.view(["obj:cushion_den", "obj:cushion_tv"])
+    assert view is not None and view.anchor == "obj:sofa_tv"
+    assert view.forward == pytest.approx((1.0, 0.0), abs=1e-3)  # towards the telly
+    # said nothing about what is looked at: the nearer settee, as before
+    plain = ViewFinder(snap, viewpoint=viewpoint("seated", "sofa"), viewpoint_marks=marks)
+    near = plain.view(["obj:cushion_den"])
+    assert near is not None and near.anchor == "obj:sofa_den"

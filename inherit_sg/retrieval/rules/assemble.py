@@ -27,6 +27,7 @@ from inherit_sg.retrieval.rules.phrase import (
     NP,
     OBJECT,
     ONE,
+    ROOM,
     VAGUE,
 )
 from inherit_sg.vocab.lexicon import lexicon
@@ -249,6 +250,16 @@ def _one_of_viewed(clause: Clause, notes: list[str]) -> None:
     notes.append(f"'the one' picks from the {seen.noun} of the viewpoint")
 
 
+def _within(words: list[str], room: NP) -> bool:
+    """Whether the request names the room after "in" / "inside" / "within" (where in it,
+    not which room to go to)."""
+    first = room.words[0] if room.words else ""
+    return any(
+        a in ("in", "inside", "within") and (b == first or (b == "the" and c == first))
+        for a, b, c in zip(words, words[1:], [*words[2:], ""], strict=False)
+    )
+
+
 def assemble(
     text: str, clause: Clause, refine: bool, notes: list[str], words: list[str]
 ) -> ParsedQuery:
@@ -290,6 +301,15 @@ def assemble(
         elif functions:
             head.kind, head.labels = GENERIC, []
             own = [c for c in own if c.kind != "attribute"]
+    if head.kind == ROOM and functions and _within(words, head):
+        # "I'd like to wash my hands — where should I go in the kitchen?": a thing in it
+        notes.append(f"{head.noun!r} is where; the need is met by a thing in it")
+        clause.places.append(
+            RoomConstraint(
+                type=head.room_type, name=head.noun, weight=weighted("room", None), text=head.noun
+            )
+        )
+        head = NP(kind=GENERIC)
     own = _instrument(head, own, functions, notes)
     head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]
     target = head.target()

@@ -8,6 +8,7 @@ one"), or, negated, an excluded label ("a seat but not a stool").
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field, replace
 
 from inherit_sg.retrieval.constraints import (
@@ -91,6 +92,9 @@ _TOWARDS = frozenset({"over", "up", "to", "towards", "toward", "at", "on", "back
 
 # Prepositions that seat the speaker on what follows ("sitting on the sofa", "in bed").
 _SEATS = frozenset({"on", "in", "upon", "onto", "into"})
+# "When I'm on the couch, …" (seated), "if you're at the sink, …" (standing there).
+_BEING_AT = {"on": "seated", "at": "from"}
+_BEING = re.compile(r"\b(i|i'm|im|you|you're|youre|we|we're|were)\b")
 # Last words of a viewpoint phrase that needs no landmark ("when you walk in", "as you
 # come up"), so that a thing and "is" after it open the main clause.
 _COMPLETE_VIEW_ENDS = frozenset({"in", "inside", "enter", "up", "down", "around", "round", "out"})
@@ -609,6 +613,9 @@ class ClauseParser(Grammar):
         verb_ok = opener or k > 0 or cue.tag in ("VBG", "VB")
         if cue.has("view"):
             kind = str(cue.tags["view"])
+        elif opener and cue.text in _BEING_AT and self._speaker_is(k):
+            kind = _BEING_AT[cue.text]  # "when I'm on the couch …", "if you're at the sink"
+            k -= 1  # the preposition is read with the landmark
         elif verb_ok and cue.lemma in lx.facing_verbs:
             kind = "facing"
         elif verb_ok and cue.lemma in lx.viewpoint_verbs and cue.pos in ("VERB", "AUX"):
@@ -669,6 +676,8 @@ class ClauseParser(Grammar):
                 kind, lm = "from", origin
             else:
                 self.restore(here)
+        if kind in ("from", "seated"):
+            self._room_after_view()  # "sitting on the sofa in the den looking at the TV"
         seen = self._second_view()  # "standing at the printer looking toward the windows"
         looking = seen.landmark() if seen is not None else looked
         opener = opener or cue.text.split()[0] in _VIEW_OPENERS
@@ -709,6 +718,12 @@ class ClauseParser(Grammar):
             self.advance()
         self.view_end = self.i
         return True
+
+    def _speaker_is(self, k: int) -> bool:
+        """Whether the ``k`` words here say the speaker (or listener) is somewhere: "I'm",
+        "you are", "we're"."""
+        said = " ".join(t.text for t in self.toks[self.i : self.i + k])
+        return k > 0 and self.at("be", k=k - 1) and bool(_BEING.search(said))
 
     def _subject_follows(self) -> bool:
         """Whether the words here are a thing and its verb "be" ("the bookshelf is …",
@@ -885,6 +900,33 @@ class ClauseParser(Grammar):
                 return False  # "you can reach the light switch, it's right by the door"
             return self.peek(1) is not None or self.more_sentences
         return tok.has("anaphor", "det", "be", "one") or self.np_start()
+
+    def _room_after_view(self) -> None:
+        """ "sitting on the settee in the den looking at the telly, the cushion …": where
+        a room phrase stands between the standpoint and what the speaker looks at, the
+        room is moved after the phrase of looking, so that the looking is read as the
+        standpoint's and the room as the request's."""
+        size = self._room_after()
+        cue = self.peek(size) if size else None
+        if cue is None or not (cue.has("view") or cue.lemma in lexicon().facing_verbs):
+            return
+        start = self.i
+        self.i += size
+        seen = self._second_view_end()
+        self.i = start
+        if seen > start + size:
+            room = self.toks[start : start + size]
+            self.toks[start : seen - size] = self.toks[start + size : seen]
+            self.toks[seen - size : seen] = room
+
+    def _second_view_end(self) -> int:
+        """Where a second viewpoint phrase here ends (here when there is none); the
+        cursor is left where it was."""
+        snap = self.state()
+        found = self._second_view()
+        end = self.i if found is not None else snap[0]
+        self.restore(snap)
+        return end
 
     def _room_after(self) -> int:
         """How many tokens a room phrase here takes ("in the family room", "in the den"),

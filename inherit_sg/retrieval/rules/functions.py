@@ -23,21 +23,28 @@ _FUNCTION_WORDS = frozenset({"for", "of", "to", "with", "and", "or", "out", "up"
 def _by_verb() -> dict[str, list[tuple[str, frozenset[str], tuple[str, ...]]]]:
     table: dict[str, list[tuple[str, frozenset[str], tuple[str, ...]]]] = {}
     for sense in senses():
-        for verb in sense.verbs or ("",):
+        for verb in (*sense.verbs, *sense.stranded) or ("",):
             table.setdefault(verb, []).append(
                 (sense.function, frozenset(sense.objects), sense.kinds)
             )
     return table
 
 
+def knows_verb(verb: str) -> bool:
+    """Whether some sense names ``verb`` (a lemma or "lemma particle") itself."""
+    return verb in _by_verb()
+
+
 def object_terms(words: list[str], lemmas: list[str] | None = None) -> set[str]:
-    """Words, their lemmas and adjacent pairs ("fresh air", "get together")."""
+    """Words, their lemmas and adjacent pairs ("fresh air", "get together"); a compound
+    word also pairs by its last word ("dirty" + "cereal bowl" → "dirty bowl")."""
     terms = set(words) | set(lemmas or ())
     # "a bottle of wine", "a glass of water": one token for the phrase, and its two nouns
     terms |= {part for term in list(terms) if " of " in term for part in term.split(" of ", 1)}
-    terms |= {f"{a} {b}" for a, b in pairwise(words)}
-    if lemmas:
-        terms |= {f"{a} {b}" for a, b in pairwise(lemmas)}
+    for seq in (words, lemmas or []):
+        terms |= {f"{a} {b}" for a, b in pairwise(seq)}
+        heads = [w.rsplit(" ", 1)[-1] for w in seq]
+        terms |= {f"{a} {b}" for a, b in pairwise(heads)}
     return terms
 
 

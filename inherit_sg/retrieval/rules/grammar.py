@@ -1317,12 +1317,13 @@ class Grammar(Cursor):
                     label=lm.noun, negated=neg, text=text, weight=weighted("area", stress)
                 )
             # the room's size words and ordinals pick the room ("in the little WC", "in
-            # the second bathroom"), they do not describe the target
+            # the second bathroom"), they do not describe the target; a superlative
+            # measured to a thing does ("the stool in the kitchen closest to the hall")
             kept = [
                 c
                 for c in lm.constraints
                 if not (isinstance(c, AttributeConstraint) and c.key == "size")
-                and not isinstance(c, Superlative)
+                and not (isinstance(c, Superlative) and c.landmark is None)
             ]
             return [place, *kept, *places]
         if lm.kind in (GENERIC_AREA, VAGUE) and predicate in _PLACE_PREDICATES:
@@ -1624,6 +1625,13 @@ class Grammar(Cursor):
                 if isinstance(c, AttributeConstraint) and c.key == "size" and not c.negated
             ),
             None,
+        ) or next(
+            (
+                _ROOM_SIZE_OF[c.measure]  # "in the biggest bedroom"
+                for c in np.constraints
+                if isinstance(c, Superlative) and c.landmark is None and c.measure in _ROOM_SIZE_OF
+            ),
+            None,
         )
         name = f"{size} {np.noun}" if size in ("small", "large") and np.noun else np.noun
         if np.room_side and name:
@@ -1640,6 +1648,8 @@ class Grammar(Cursor):
 
 
 _CENTRE_WORDS = frozenset({"center", "centre", "middle"})
+# A room's superlative of size names it as its size word does ("the biggest bedroom").
+_ROOM_SIZE_OF = {"largest": "large", "smallest": "small"}
 # Parts built into a thing, which a map rarely holds apart from it ("the oven door").
 _BUILT_IN_PARTS = frozenset(
     {"door", "lid", "handle", "knob", "leg", "arm", "armrest", "backrest", "seat", "screen",

@@ -124,11 +124,24 @@ def _object_subject(words: list[Word]) -> set[str]:
     return set()
 
 
+def _speaker_has(words: list[Word]) -> bool:
+    """Whether the sentence says the speaker has something ("I've got some dirty
+    plates", "we have muddy boots")."""
+    speaker = lexicon().problems["subjects"]
+    return any(
+        w.dep == "ROOT"
+        and w.lemma in ("have", "get")
+        and any(s.dep == "nsubj" and s.text in speaker for s in words)
+        for w in words
+    )
+
+
 def match_problem(words: list[Word]) -> tuple[str, tuple[str, ...]] | None:
     """The (function, likely kinds) a problem sentence implies, or None. A statement
     about a kind of object is a problem only where the problem names that subject
     ("the dishes are dirty"), not otherwise ("the laundry basket is by the washer")."""
-    states = _terms(words, heads_only=True)
+    # "I've got some dirty plates": what the speaker has is in the state its adjective says
+    states = _terms(words, heads_only=not _speaker_has(words))
     subjects = _terms(words, heads_only=True)  # "a laundry basket on the floor": no laundry
     thing = _object_subject(words)
     # a thing that does something ("the cable runs along the wall") states no problem

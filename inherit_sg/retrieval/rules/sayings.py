@@ -36,6 +36,42 @@ _WHILE_I_AM_AT = re.compile(
     r"\b(?:while|when|whilst|and)\s+(?:i'm|i\s+am|im)\s+(?:sitting\s+|lying\s+|working\s+)?(?:on|at)\s+",
     re.IGNORECASE,
 )
+# Sides seen from where the speaker is ("… on my left", "the one on the right"): "when
+# I'm on the couch" then says where they sit, which the viewpoint reads.
+_SPEAKER_SIDE = re.compile(
+    r"\b(?:my|your|ur|the)\s+(?:left|right)\b|\b(?:behind|in\s+front\s+of)\s+me\b",
+    re.IGNORECASE,
+)
+
+
+def _near_unless_sided(m: re.Match[str]) -> str:
+    """ "while I'm on the sofa" → "near" (the thing sought is by it), unless the request
+    says a side from there ("when I'm on the couch, the cushion on my left")."""
+    return m.group(0) if _SPEAKER_SIDE.search(m.string) else "near "
+
+
+# "the chair where we eat", "the light where we watch telly": a thing said to be where
+# the household does something is in the room made for it.
+_WHERE_WE = re.compile(
+    r"(?<=\w)\s+where\s+(?:we|you|they|the\s+family)\s+(?:usually\s+|all\s+)?"
+    r"(eat|have\s+(?:dinner|lunch|breakfast|(?:our\s+)?meals)|cook|sleep|"
+    r"watch\s+(?:tv|telly|television|movies|films))\b",
+    re.IGNORECASE,
+)
+_ROOM_OF_DOING = {
+    "eat": "dining room",
+    "have": "dining room",
+    "cook": "kitchen",
+    "sleep": "bedroom",
+    "watch": "tv room",
+}
+
+
+def _in_room_of_doing(m: re.Match[str]) -> str:
+    """ "… where we eat" → " in the dining room" (after a thing, not opening a question)."""
+    return f" in the {_ROOM_OF_DOING[m.group(1).split()[0].lower()]}"
+
+
 # "there's no way to miss the radiator": it cannot be missed, as "you can't miss" says.
 _NO_WAY_TO_MISS = re.compile(
     r"\b(?:there's|there\s+is|theres)\s+no\s+way\s+(?:to|you\s+(?:can|could|will|'ll))\s+miss\b",
@@ -156,7 +192,8 @@ Replacement = str | Callable[[re.Match[str]], str]
 SAYINGS: tuple[tuple[re.Pattern[str], Replacement], ...] = (
     (_MISSPELT_NOT, lambda m: f"{m.group(2) or 'does'}n't"),
     (_NOTHING_PUT, r"\1 "),
-    (_WHILE_I_AM_AT, "near "),
+    (_WHILE_I_AM_AT, _near_unless_sided),
+    (_WHERE_WE, _in_room_of_doing),
     (_NEED_A_WEE, r"\1 the toilet"),
     (_BOTH_PARENTS, "my parents'"),
     (_NO_WAY_TO_MISS, "you can't miss"),

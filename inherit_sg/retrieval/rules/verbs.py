@@ -23,6 +23,7 @@ from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import (
     Sense,
     has_own_sense,
+    knows_verb,
     match_function,
     open_function,
 )
@@ -50,6 +51,27 @@ _PLACING_VERBS = frozenset(
 _VERB_FILLERS = ("want", "need", "like", "possible", "wish", "mood", "fancy")
 # Prepositions inside a verb's object ("a cup of tea", "a place for my coat").
 _OBJECT_PREPOSITIONS = frozenset({"of", "for", "to", "with", "about"})
+_SPEAKERS = frozenset({"i", "we", "me", "us"})
+
+
+_LINKING_VERBS = frozenset({"look", "seem", "feel", "sound", "appear"})
+
+
+def _after_linking_verb(g: Grammar, start: int) -> bool:
+    """Whether the word at ``start`` follows "looks" / "seems" / "feels": it says how
+    something looks ("my outfit looks cool"), it is no verb of the speaker's."""
+    return start > 0 and g.toks[start - 1].lemma in _LINKING_VERBS and g.toks[start - 1].tag != "VB"
+
+
+def _passive_of_thing(g: Grammar, start: int) -> bool:
+    """Whether the verb at ``start`` is a passive said of a thing ("so it gets washed",
+    "where they'll be cleaned"): it restates what happens to the thing already named,
+    not something the speaker wants to do."""
+    tok = g.toks[start]
+    if tok.tag != "VBN" or start < 2:
+        return False
+    aux, subject = g.toks[start - 1], g.toks[start - 2]
+    return aux.lemma in ("get", "be") and subject.pos == "PRON" and subject.text not in _SPEAKERS
 
 
 def verb_reading(tok: Tok) -> str | None:
@@ -118,6 +140,9 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     object, then gives a function in the request's own words rather than a head."""
     start = g.i
     tok = g.advance()
+    if _passive_of_thing(g, start) or _after_linking_verb(g, start):
+        g.notes.append(f"'{tok.text}' said of a thing: not a need of its own")
+        return [], None
     verb = verb_reading(tok) or tok.text
     refused = g.take_neg()
     if refused and tok.lemma not in _CHOICE_VERBS and not kept_out(tok):
@@ -155,6 +180,11 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         obj = _objects(g, landmark=verb not in lx.light_verbs)
     if obj is not None:
         verb = _particle_after(g, verb, obj)  # "put some music on": "put on"
+    elif (
+        head is None and nxt is not None and knows_verb(f"{verb} {nxt.text}") and not g.np_start(1)
+    ):
+        g.advance()  # "something to stand on (in the kitchen)": a sense of its own
+        verb = f"{verb} {nxt.text}"
     by_means = _by_means(g, start)  # "what could I use to get the creases out …"
     if obj is not None and by_means:
         _take_source(g)
