@@ -1323,7 +1323,10 @@ class Grammar(Cursor):
                 c
                 for c in lm.constraints
                 if not (isinstance(c, AttributeConstraint) and c.key == "size")
-                and not (isinstance(c, Superlative) and c.landmark is None)
+                and not (
+                    isinstance(c, Superlative)
+                    and (c.landmark is None or c.measure not in ("closest", "farthest"))
+                )
             ]
             return [place, *kept, *places]
         if lm.kind in (GENERIC_AREA, VAGUE) and predicate in _PLACE_PREDICATES:

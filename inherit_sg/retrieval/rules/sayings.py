@@ -50,6 +50,21 @@ def _near_unless_sided(m: re.Match[str]) -> str:
     return m.group(0) if _SPEAKER_SIDE.search(m.string) else "near "
 
 
+# "check if the dishwasher's finished", "the fan's going": "'s" before a state is "is"
+# (or "has" before "been"), not a possessive.
+_IS_STATE = re.compile(
+    r"\b(\w+)'s\s+(?=(?:finished|done|broken|full|empty|open|closed|off|running|going|"
+    r"leaking|blocked|stuck|dirty|working|been)\b)",
+    re.IGNORECASE,
+)
+
+
+def _is_or_has(m: re.Match[str]) -> str:
+    """ "the dishwasher's finished" → "the dishwasher is finished"; "'s been" → "has"."""
+    after = m.string[m.end() : m.end() + 4].lower()
+    return f"{m.group(1)} {'has' if after == 'been' else 'is'} "
+
+
 # "the chair where we eat", "the light where we watch telly": a thing said to be where
 # the household does something is in the room made for it.
 _WHERE_WE = re.compile(
@@ -194,6 +209,7 @@ SAYINGS: tuple[tuple[re.Pattern[str], Replacement], ...] = (
     (_NOTHING_PUT, r"\1 "),
     (_WHILE_I_AM_AT, _near_unless_sided),
     (_WHERE_WE, _in_room_of_doing),
+    (_IS_STATE, _is_or_has),
     (_NEED_A_WEE, r"\1 the toilet"),
     (_BOTH_PARENTS, "my parents'"),
     (_NO_WAY_TO_MISS, "you can't miss"),

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from itertools import pairwise
 
+from inherit_sg.retrieval.rules.asides import without_personal_asides
 from inherit_sg.retrieval.rules.rewording import (
     another_as_one_more,
     besides_as_beside,
@@ -83,7 +84,8 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     sentences = [part for sentence in sentences for part in _split_run_on(sentence)]
     sentences = [part for sentence in sentences for part in _split_placed_by_it(sentence)]
     sentences = [_without_rhetorical_not(_without_vocative(s)) for s in sentences]
-    return _without_cautions(_without_asides(_without_letter_frame(sentences)))
+    sentences = _without_cautions(_without_asides(_without_letter_frame(sentences)))
+    return without_personal_asides(sentences)
 
 
 # Verbs of choosing or fetching: "don't bring the red bag" rules a thing out; any other
