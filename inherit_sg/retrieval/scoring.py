@@ -67,9 +67,9 @@ from inherit_sg.retrieval.score_table import RankedRows, ScoreTable
 from inherit_sg.retrieval.scored import Scored
 from inherit_sg.retrieval.scored import Term as Term  # re-exported: callers import it here
 from inherit_sg.retrieval.sizes import (
+    bulk,
     linear_size,
     measured_in_views,
-    robust_volume,
     size_word,
     size_word_sim,
 )
@@ -552,7 +552,7 @@ class Scorer:
         node = self.snap.node(node_id)
         if con.measure in ("largest", "smallest"):
             if isinstance(node, ObjectNode):
-                return robust_volume(node.bbox.size)
+                return bulk(node.bbox.size)
             if isinstance(node, RoomNode) and node.mask is not None:
                 return node.mask.area_m2
             return None

@@ -4,8 +4,11 @@ Map boxes come from the depth points the cameras saw: a wall clock seen from the
 has a box a fraction of a millimetre deep, and a part seen in a single view can be a
 sliver of a larger object. Hence:
 
-- sizes are compared by :func:`robust_volume`, the box volume with every side floored
-  at a share of the longest side, so that flat boxes keep the area they show;
+- "the biggest" / "the smallest" compare :func:`bulk`, the geometric mean of a box's
+  face area (its two longest sides) and its robust volume: a box seen from one side
+  measures its depth worst;
+- size words ("a large mug") use :func:`robust_volume`, the box volume with every side
+  floored at a share of the longest side, so that flat boxes keep the area they show;
 - :func:`measured_in_views` keeps single-view objects out of a comparison when objects
   seen from several views can be compared instead;
 - size words are relative to the kind: "a large mug" is smaller than "a small table".
@@ -44,6 +47,21 @@ def robust_volume(extent: Iterable[float]) -> float:
     sides = [max(0.0, float(v)) for v in extent]
     longest = max(sides, default=0.0)
     return math.prod(max(s, FLAT_SHARE * longest) for s in sides)
+
+
+def face_area(extent: Iterable[float]) -> float:
+    """Product of the box's two longest sides: how big a thing looks."""
+    sides = sorted((max(0.0, float(v)) for v in extent), reverse=True)
+    return math.prod(sides[:2]) if len(sides) >= 2 else 0.0
+
+
+def bulk(extent: Iterable[float]) -> float:
+    """How big a thing is, as "the biggest" / "the smallest" compare it: the geometric
+    mean of its face area and its robust volume. A box seen from one side measures its
+    depth worst (a wall-mounted TV mapped with its bracket is no bigger than a wider
+    screen), yet a floor pouf is bigger than a flat cushion of the same face."""
+    sides = [float(v) for v in extent]
+    return math.sqrt(face_area(sides) * robust_volume(sides))
 
 
 def linear_size(node: ObjectNode) -> float:

@@ -13,6 +13,8 @@ from inherit_sg.retrieval.graph_checks import GraphChecker
 from inherit_sg.retrieval.plan import Compiler
 from inherit_sg.retrieval.scoring import Scored, Scorer, attribute_sim
 from inherit_sg.retrieval.sizes import (
+    bulk,
+    face_area,
     kind_sizes,
     linear_size,
     measured_in_views,
@@ -59,6 +61,18 @@ def test_robust_volume_keeps_the_area_of_flat_boxes() -> None:
     assert robust_volume((0.3, 0.0001, 0.3)) == pytest.approx(0.3 * 0.03 * 0.3)
     assert robust_volume((0.0, 0.0, 0.0)) == 0.0
     assert linear_size(_obj(1, "box", (0.2, 0.2, 0.2))) == pytest.approx(0.2)
+
+
+def test_the_biggest_tv_has_the_biggest_screen_not_the_deepest_box() -> None:
+    assert face_area((0.07, 1.89, 1.15)) == pytest.approx(1.89 * 1.15)
+    assert face_area((0.0, 0.0, 0.0)) == 0.0 and bulk((0.0, 0.0, 0.0)) == 0.0
+    # a TV seen face on (a thin box) and one mapped deep from the side
+    tvs = [_obj(1, "tv", (0.07, 1.89, 1.15)), _obj(2, "tv", (0.36, 1.47, 0.86))]
+    assert _rank(_snapshot(tvs), "which telly is the biggest")[0].id == "obj:1"
+    assert _rank(_snapshot(tvs), "the smallest tv")[0].id == "obj:2"
+    # a floor pouf is bigger than a flat cushion with a slightly larger face
+    pillows = [_obj(3, "pillow", (0.43, 0.58, 0.05)), _obj(4, "pillow", (0.41, 0.29, 0.47))]
+    assert _rank(_snapshot(pillows), "the biggest pillow")[0].id == "obj:4"
 
 
 def test_size_words_are_relative_to_the_kind() -> None:

@@ -251,9 +251,12 @@ def _one_of_viewed(clause: Clause, notes: list[str]) -> None:
 
 
 def _within(words: list[str], room: NP) -> bool:
-    """Whether the request names the room after "in" / "inside" / "within" (where in it,
-    not which room to go to)."""
+    """Whether the request names the room after "in" / "inside" / "within", or says
+    what is done "where" in it (where in it, not which room to go to: "where should I
+    go in the kitchen", "a bathroom near the front door where I could wash my hands")."""
     first = room.words[0] if room.words else ""
+    if room.room_type and first in words and "where" in words[words.index(first) + 1 :]:
+        return True
     return any(
         a in ("in", "inside", "within") and (b == first or (b == "the" and c == first))
         for a, b, c in zip(words, words[1:], [*words[2:], ""], strict=False)

@@ -70,6 +70,8 @@ _CLAUSE_STARTS = ("be", "neg", "modal", "have", "emph", "hedge", "adv", "prep", 
 # entry hall", "the bedroom next to the kitchen", "the bathroom by the front door").
 # Kinds that lead from one place to another ("the door to the toilet").
 _PASSAGES = frozenset({"door", "stairs", "arch", "gate", "doorway", "hallway"})
+# Words that only stress how near a room lies ("just off the hall", "right by the door").
+_JUST = frozenset({"just", "right", "directly", "immediately"})
 _BESIDE_ROOM = frozenset({
     "off", "off of", "next to", "by", "near", "beside", "close to", "adjacent to",
     "across from", "opposite",
@@ -718,6 +720,15 @@ class Grammar(Cursor):
             return True
         if tok.text in ("in", "with") and self._material_phrase(np):
             return True
+        if (
+            landmark
+            and np.kind == ROOM
+            and tok.text in _JUST
+            and (nxt := self.peek(1)) is not None
+            and nxt.text in _BESIDE_ROOM
+        ):
+            self.advance()  # "the bathroom just off the front hall"
+            tok = nxt
         if tok.has("prep", "away"):
             snap = self.state()
             made = self.parse_pp()

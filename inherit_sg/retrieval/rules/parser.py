@@ -53,7 +53,7 @@ from inherit_sg.retrieval.rules.phrase import (
     ROOM,
     VAGUE,
 )
-from inherit_sg.retrieval.rules.problems import open_problem, split_problem
+from inherit_sg.retrieval.rules.problems import open_problem, split_problem, trailing_problem
 from inherit_sg.retrieval.rules.rewording import called_off
 from inherit_sg.retrieval.rules.route import route_goal
 from inherit_sg.retrieval.rules.sentences import (
@@ -290,7 +290,10 @@ def parse_uncached(text: str) -> ParsedQuery:
     plain, read_as = plain_request(text)
     analysed, fixes = analyse_text(plain)
     problem, sentences = split_problem(route_goal(called_off(analysed)))
-    unknown_problem = open_problem(analysed) if problem is None else None
+    obstacle = None
+    if problem is None:
+        obstacle, sentences = trailing_problem(sentences)
+    unknown_problem = open_problem(analysed) if problem is None and obstacle is None else None
     words = _flat(sentences)
     reason = global_reason(words) if words or problem is None else None
     if reason is not None:
@@ -445,6 +448,13 @@ def parse_uncached(text: str) -> ParsedQuery:
             )
     if clause.head is not None and clause.head.kind == OBJECT and not clause.head.known:
         clause.fetched = any(fetches_particular(s, clause.head.noun) for s in sentences)
+    if obstacle is not None:
+        notes.append(f"function {obstacle.function!r}: what stands in the way, {obstacle.text!r}")
+        head = clause.head
+        if head is not None and head.kind == OBJECT and head.labels:
+            clause.implied.append(obstacle)  # "the drapes, please? It's getting dark."
+        else:
+            clause.functions.insert(0, obstacle)  # "I want to read but it's too dark"
     if problem is not None:
         notes.append(f"function {problem.function!r} implied by the problem {problem.text!r}")
         clause.implied.append(problem)  # an explicit request ("where can I lie down") leads

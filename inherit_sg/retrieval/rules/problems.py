@@ -200,6 +200,40 @@ def _question_starts(words: list[Word], i: int) -> bool:
     return i > 2 and words[i].text in _QUESTION_WORDS and words[i - 1].pos not in ("VERB", "AUX")
 
 
+# Words that open a trailing statement of what stands in the way ("… but it's too dark").
+_OBSTACLE_OPENERS = frozenset({"but"})
+
+
+def trailing_problem(
+    sentences: list[list[Word]],
+) -> tuple[FunctionConstraint | None, list[list[Word]]]:
+    """A problem stated after what the speaker wants to do, as what stands in the way
+    ("I want to read in bed but it's too dark", "I'd like to read. It's too dark."):
+    the function it implies, and the sentences without it; (None, sentences) else."""
+    if not sentences:
+        return None, sentences
+    last = [w for w in sentences[-1] if w.text != "."]
+    cut = max((i for i, w in enumerate(last) if w.text in _OBSTACLE_OPENERS), default=-1)
+    tail = last[cut + 1 :] if cut >= 0 else last
+    if (cut < 0 and len(sentences) < 2) or not tail or not _is_statement(tail):
+        return None, sentences
+    if tail[0].text not in ("it", "i", "we") or any(w.text == "," for w in tail):
+        return None, sentences  # "… but the lamp is too dim": a thing, not the speaker's
+    if any(w.pos in ("NOUN", "PROPN") and object_vocab.canonical_label(w.text) for w in tail):
+        return None, sentences  # "it is between the two armchairs …": a thing placed
+    sense = match_problem(tail)
+    if sense is None:
+        return None, sentences
+    made = FunctionConstraint(
+        function=sense[0],
+        labels=sense[1],
+        weight=weighted("function", None),
+        text=" ".join(w.text for w in tail),
+    )
+    rest = last[:cut] if cut > 0 else []
+    return made, [*sentences[:-1], *([rest] if rest else [])]
+
+
 def split_problem(
     sentences: list[list[Word]],
 ) -> tuple[FunctionConstraint | None, list[list[Word]]]:
