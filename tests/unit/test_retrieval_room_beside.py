@@ -66,3 +66,9 @@ def test_the_hall_is_the_entryway_when_the_map_has_no_hallway() -> None:
     # no qualifier: the room the map calls a bathroom comes first
     ranked, _ = rank(snap, parse_rules("the towel in the bathroom"))
     assert ranked[0].id == "obj:towel_b"
+
+
+def test_just_off_the_hall_is_off_the_hall() -> None:
+    parsed = parse_rules("the mirror in the bathroom just off the front hall")
+    rooms = [c for c in parsed.constraints if isinstance(c, RoomConstraint)]
+    assert [(r.type, r.beside) for r in rooms] == [("bathroom", "entryway")]
