@@ -352,6 +352,42 @@ def usual_rooms(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
     return ()
 
 
+# Weight of where a kind typically stands in its room, when the map names no such kind
+# (a hint: it orders the candidates, it decides no comparison).
+USUAL_PLACEMENT_WEIGHT = 0.4
+
+
+def usual_placement(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[Constraint, ...]:
+    """A weak placement for a kind asked for that typically stands somewhere in its room
+    (``objects.toml`` ``placement``: a kitchen island in the middle), when the map has no
+    object of that kind and the request says no placement itself: "the kitchen island"
+    is then the counter in the middle of the kitchen, not the one along the wall."""
+    if any(isinstance(c, PlacementConstraint) for c in cons):
+        return ()
+    held = {k for kinds in snap.canon.values() for k in kinds}
+    for con in cons:
+        if not isinstance(con, LabelConstraint) or con.negated:
+            continue
+        for label in con.labels:
+            where = object_vocab.typical_placement(label)
+            if where and label not in held:
+                why = f"a {label} usually stands {_PLACED_AT[where]} (objects.toml)"
+                return (
+                    PlacementConstraint(
+                        id=f"{con.id}~placed", where=where, weight=USUAL_PLACEMENT_WEIGHT,
+                        text=why,
+                    ),
+                )  # fmt: skip
+    return ()
+
+
+_PLACED_AT = {
+    "centre": "in the middle of its room",
+    "wall": "against a wall",
+    "corner": "in a corner",
+}
+
+
 # Weight of the room a landmark is taken to share with what is sought ("the cushion next
 # to the sofa in the family room": that sofa is in the family room too).
 SHARED_ROOM_WEIGHT = 0.7
@@ -459,7 +495,7 @@ class Compiler:
         cons = (*implied_constraints(key, target, cons), *cons)
         near = compound_nearness(cons, self.snap)
         cons = (*cons, *near, *compound_rooms(cons, self.snap, near))
-        cons = (*cons, *usual_rooms(cons))
+        cons = (*cons, *usual_rooms(cons), *usual_placement(cons, self.snap))
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
         spec.viewpoint = viewpoint

@@ -26,7 +26,9 @@ from inherit_sg.vocab import VocabularyError, load_table, require, string_list
 
 _FILE = "objects.toml"
 _TOP_KEYS = frozenset({"version", "kinds", "general"})
-_KIND_KEYS = frozenset({"synonyms", "is_a", "parts", "detect"})
+_KIND_KEYS = frozenset({"synonyms", "is_a", "parts", "detect", "placement"})
+# Where in its room a kind typically stands (a kitchen island in the middle).
+_PLACEMENTS = frozenset({"wall", "corner", "centre"})
 _GENERAL_KEYS = frozenset({"words", "is_a", "typical"})
 # Separators that dataset labels use for spaces ("sofa_chair", "bath#cabinet", "t-shirt").
 _SEPARATORS = re.compile(r"[_#\-\s]+")
@@ -40,13 +42,15 @@ _TRAILING_NUMBER = re.compile(r"\s*\d+$")
 @dataclass(frozen=True)
 class Kind:
     """One object kind: its canonical label, synonyms, direct ``is_a`` parents, own
-    parts (file order) and whether it is a default detector prompt."""
+    parts (file order), whether it is a default detector prompt, and where in its room
+    it typically stands ("" when nowhere in particular)."""
 
     label: str
     synonyms: tuple[str, ...]
     is_a: tuple[str, ...]
     parts: tuple[str, ...]
     detect: bool
+    placement: str = ""
 
 
 @dataclass(frozen=True)
@@ -168,12 +172,16 @@ def _parse_kinds(data: dict[str, Any]) -> tuple[dict[str, Kind], dict[str, str]]
         detect = entry.get("detect", False)
         if not isinstance(detect, bool):
             raise VocabularyError(f"{where}: 'detect' must be true or false")
+        placement = entry.get("placement", "")
+        if placement and placement not in _PLACEMENTS:
+            raise VocabularyError(f"{where}: 'placement' must be one of {sorted(_PLACEMENTS)}")
         kind = Kind(
             label=label,
             synonyms=_phrases(entry, "synonyms", where),
             is_a=_phrases(entry, "is_a", where),
             parts=_phrases(entry, "parts", where),
             detect=detect,
+            placement=placement,
         )
         if label in kind.is_a:
             raise VocabularyError(f"{where}: 'is_a' names the kind itself")
@@ -483,6 +491,14 @@ def is_kind_of(label: str, general: str) -> bool:
         found = _name(key, voc)
         name = found[0] if found else None
     return name is not None and name != kind and name in voc.ancestors[kind]
+
+
+def typical_placement(label: str) -> str:
+    """Where in its room a kind typically stands ("centre", "wall", "corner"), "" when
+    nowhere in particular or unknown."""
+    voc = vocabulary()
+    kind = voc.kinds.get(label)
+    return kind.placement if kind is not None else ""
 
 
 def parts(label: str) -> tuple[str, ...]:

@@ -75,3 +75,23 @@ def test_scoring_ranks_by_placement() -> None:
     ranked, _ = rank(snap, request("bench", PlacementConstraint(where="wall")))
     term = ranked[0].terms["c2"]
     assert term.sim == UNKNOWN_SIM and "placement unknown" in term.why
+
+
+def test_a_kind_that_stands_in_the_middle_prefers_the_middle() -> None:
+    from inherit_sg.retrieval.constraints import LabelConstraint
+    from inherit_sg.retrieval.plan import usual_placement
+    from tests.unit.retrieval_fixtures import floor_snapshot
+
+    asked = (LabelConstraint(id="c1", labels=("kitchen island",), noun="kitchen island"),)
+    # the map names no kitchen island: the counter in the middle of the kitchen is meant
+    (placed,) = usual_placement(asked, row_snapshot())
+    assert isinstance(placed, PlacementConstraint) and placed.where == "centre"
+    assert placed.weight < 0.5 and placed.id == "c1~placed"
+    # a map that has one: no hint; nor when the request says where it stands itself
+    island = floor_snapshot([("i1", "kitchen island", 0.0, 0.0, None)])
+    assert usual_placement(asked, island) == ()
+    said = (*asked, PlacementConstraint(id="c2", where="wall"))
+    assert usual_placement(said, row_snapshot()) == ()
+    # kinds with no typical placement get none
+    chair = (LabelConstraint(id="c1", labels=("chair",), noun="chair"),)
+    assert usual_placement(chair, row_snapshot()) == ()

@@ -347,6 +347,7 @@ def test_a_small_valid_file(objects_file: Callable[[str], None]) -> None:
         ("[general]\nseat = 3\n[kinds.sofa]", ["[general.seat]", "must be a table"]),
         ("[kinds]", ["needs at least one"]),
         ("[things.sofa]", ["unknown top-level key 'things'"]),
+        ('[kinds.island]\nplacement = "ceiling"', ["[kinds.island]", "'placement'"]),
     ],
 )
 def test_malformed_files_are_named(
