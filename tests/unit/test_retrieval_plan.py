@@ -104,7 +104,6 @@ def test_a_landmark_shares_the_room_the_request_names() -> None:
     "text",
     [
         "the cushion next to the sofa",  # no room said
-        "the cushion not next to the sofa in the living room",  # the relation ruled out
         "the cushion next to the sofa, not in the living room",  # the room ruled out
     ],
 )
@@ -112,6 +111,14 @@ def test_no_shared_room_without_a_room_said_of_what_is_sought(text: str) -> None
     plan = compile_text(text)
     for key, spec in plan.target.landmarks.items():
         assert not [c for c in spec.constraints if c.kind == "room"], (key, spec.constraints)
+
+
+def test_a_ruled_out_landmark_shares_the_room_too() -> None:
+    # "the bedroom lamp that's not near the curtains": the bedroom's curtains
+    plan = compile_text("the bedroom lamp that's not near the curtains")
+    (spec,) = plan.target.landmarks.values()
+    rooms = [c for c in spec.constraints if c.kind == "room"]
+    assert len(rooms) == 1 and rooms[0].type == "bedroom"
 
 
 def test_a_seated_viewpoint_and_what_it_looks_at_are_both_landmarks() -> None:
