@@ -32,6 +32,9 @@
   doors").
 - "leave the heavy box and bring the small box", "forget the kitchen, check the grill":
   what is set aside before the errand is ruled out.
+- "the shelf the TV sits on", "the box that the keys are in": a relative clause whose
+  object is the thing sought, its preposition left at the end, reads as "the shelf with
+  the TV on it".
 """
 
 from __future__ import annotations
@@ -699,3 +702,52 @@ def which_of_is(sentence: list[Word]) -> list[Word]:
         (j for j in range(2, k) if sentence[j].pos == "ADP" and sentence[j].text != "of"), k
     )
     return [*picked, *sentence[place:k]]
+
+
+_WITH = Word("with", "with", "ADP", "IN", "prep")
+_IT_AFTER = Word("it", "it", "PRON", "PRP", "pobj")
+# Verbs of resting somewhere in a relative clause whose object is the thing sought ("the
+# shelf the TV sits on", "the box that the keys are in").
+_RESTING = frozenset({"be", "sit", "stand", "rest", "lie", "hang", "go", "live", "belong", "sleep"})
+# Prepositions such a clause ends with ("… the TV sits on", "… the lamp is next to").
+_STRANDED = ("next to", "in front of", "on top of", "on", "in", "inside", "under",
+             "underneath", "beneath", "behind", "beside", "by", "near", "above", "over")  # fmt: skip
+_CLAUSE_END = frozenset({",", "and", "but", "."})
+
+
+def stranded_relative(sentence: list[Word]) -> list[Word]:
+    """ "the shelf the TV sits on", "the box that the keys are in", "the table the lamp is
+    next to" as "the shelf with the TV on it": a relative clause whose object is the
+    thing sought, with its preposition left at the end, says what is on, in or by it."""
+    texts = [w.text for w in sentence]
+    for k in range(1, len(sentence) - 3):
+        if sentence[k - 1].pos not in ("NOUN", "PROPN") or texts[k] not in (
+            "the",
+            "a",
+            "my",
+            "that",
+            "which",
+            "our",
+            "your",
+        ):
+            continue
+        j = k + 1 if texts[k] in ("that", "which") else k
+        if j >= len(sentence) or texts[j] not in ("the", "a", "my", "our", "your", "his", "her"):
+            continue
+        n = j + 1
+        while n < len(sentence) and n - j <= 4 and sentence[n].pos in ("NOUN", "PROPN", "ADJ"):
+            n += 1
+        if n == j + 1 or n >= len(sentence) or sentence[n - 1].pos not in ("NOUN", "PROPN"):
+            continue
+        if sentence[n].lemma not in _RESTING:
+            continue
+        v = n + 1
+        while v < len(sentence) and texts[v] in ("usually", "always", "normally", "now"):
+            v += 1
+        for prep in _STRANDED:
+            words = prep.split()
+            end = v + len(words)
+            if texts[v:end] == words and (end == len(sentence) or texts[end] in _CLAUSE_END):
+                thing = sentence[j:n]
+                return [*sentence[:k], _WITH, *thing, *sentence[v:end], _IT_AFTER, *sentence[end:]]
+    return sentence
