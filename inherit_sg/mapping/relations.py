@@ -108,7 +108,9 @@ def infer_relations(
                     Relation(ids[i], ids[j], "on", 1.0 - abs(bottom_to_top[i, j]) / (2 * ON_Z_TOL))
                 )
             elif bottom_to_top[i, j] >= -ON_Z_TOL and overlap_above[i, j]:
-                out.append(Relation(ids[i], ids[j], "above", 0.8))
+                # over the footprint: 0.8; hung behind it: less, the farther behind
+                behind = max(0.0, -float(ox[i, j]), -float(oy[i, j]))
+                out.append(Relation(ids[i], ids[j], "above", 0.8 - 0.4 * behind / ABOVE_XY_MARGIN))
             elif (
                 (lo[i] >= lo[j] - 0.02).all()
                 and (hi[i] <= hi[j] + 0.02).all()
