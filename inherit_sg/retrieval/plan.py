@@ -388,6 +388,33 @@ _PLACED_AT = {
 }
 
 
+# Weight of the room what is sought takes from the landmark it is on, in or under ("the
+# cupboards under the kitchen counter" are in the kitchen).
+LANDMARK_ROOM_WEIGHT = 0.5
+# Relations that put what is sought in its landmark's room.
+_SAME_ROOM_PREDICATES = frozenset({"on", "under", "inside", "above", "supports", "contains"})
+
+
+def landmark_room(cons: tuple[Constraint, ...]) -> tuple[Constraint, ...]:
+    """The weak room constraint what is sought takes from a landmark it is on, in, under
+    or above, when the landmark's room is said ("the cupboards under the kitchen counter",
+    "the mug on the bedroom table") and the request names no room of its own."""
+    if any(isinstance(c, RoomConstraint) for c in cons):
+        return ()
+    for con in cons:
+        if (
+            not isinstance(con, RelationConstraint)
+            or con.negated
+            or con.predicate not in _SAME_ROOM_PREDICATES
+        ):
+            continue
+        for room in con.landmark.constraints:
+            if isinstance(room, RoomConstraint) and not room.negated:
+                why = f"on, in or under the {con.landmark.target.describe()}: in its room"
+                return (replace(room, id=f"{con.id}~room", weight=LANDMARK_ROOM_WEIGHT, text=why),)
+    return ()
+
+
 # Weight of the room a landmark is taken to share with what is sought ("the cushion next
 # to the sofa in the family room": that sofa is in the family room too).
 SHARED_ROOM_WEIGHT = 0.7
@@ -493,6 +520,7 @@ class Compiler:
         cons = (*implied_constraints(key, target, cons), *cons)
         near = compound_nearness(cons, self.snap)
         cons = (*cons, *near, *compound_rooms(cons, self.snap, near))
+        cons = (*cons, *landmark_room(cons))
         cons = (*cons, *usual_rooms(cons), *usual_placement(cons, self.snap))
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)

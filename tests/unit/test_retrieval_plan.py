@@ -9,6 +9,7 @@ from inherit_sg.retrieval.match import is_kind_of
 from inherit_sg.retrieval.plan import (
     CYPHER_OBJECTS_BY_LABEL,
     CYPHER_OBJECTS_IN_ROOMS,
+    LANDMARK_ROOM_WEIGHT,
     SHARED_ROOM_WEIGHT,
     Compiler,
     QueryPlan,
@@ -111,6 +112,17 @@ def test_no_shared_room_without_a_room_said_of_what_is_sought(text: str) -> None
     plan = compile_text(text)
     for key, spec in plan.target.landmarks.items():
         assert not [c for c in spec.constraints if c.kind == "room"], (key, spec.constraints)
+
+
+def test_what_is_under_or_on_a_landmark_is_in_its_room() -> None:
+    plan = compile_text("the cupboards under the kitchen counter")
+    rooms = [c for c in plan.target.constraints if c.kind == "room"]
+    assert len(rooms) == 1 and rooms[0].type == "kitchen" and rooms[0].id.endswith("~room")
+    assert rooms[0].weight == pytest.approx(LANDMARK_ROOM_WEIGHT)
+    # a room said of what is sought wins; nearness says nothing of the room
+    for text in ("the mug in the bedroom on the kitchen table", "the chair near the kitchen sink"):
+        plan = compile_text(text)
+        assert not [c for c in plan.target.constraints if c.id.endswith("~room")], text
 
 
 def test_a_ruled_out_landmark_shares_the_room_too() -> None:
