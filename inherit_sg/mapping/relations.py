@@ -26,9 +26,6 @@ from inherit_sg.model import Edge, EdgeKind, ObjectNode
 
 ON_Z_TOL = 0.05
 STACK_XY_MARGIN = 0.10
-# A thing hung on the wall above another stands behind it, not over its footprint (a
-# mirror over a basin, a picture above a sofa): "above" allows this much gap each way.
-ABOVE_XY_MARGIN = 0.30
 NEXT_TO_GAP = 0.5
 NEXT_TO_Z_GAP = 0.3
 NEAR_GAP = 1.5
@@ -82,7 +79,6 @@ def infer_relations(
     oy = np.minimum(hi[:, None, 1], hi[None, :, 1]) - np.maximum(lo[:, None, 1], lo[None, :, 1])
     overlap_xy = (ox > 0) & (oy > 0)
     overlap_margin = (ox + 2 * STACK_XY_MARGIN > 0) & (oy + 2 * STACK_XY_MARGIN > 0)
-    overlap_above = (ox + ABOVE_XY_MARGIN > 0) & (oy + ABOVE_XY_MARGIN > 0)
     zgap = np.maximum(
         0, np.maximum(lo[:, None, 2] - hi[None, :, 2], lo[None, :, 2] - hi[:, None, 2])
     )
@@ -107,10 +103,8 @@ def infer_relations(
                 out.append(
                     Relation(ids[i], ids[j], "on", 1.0 - abs(bottom_to_top[i, j]) / (2 * ON_Z_TOL))
                 )
-            elif bottom_to_top[i, j] >= -ON_Z_TOL and overlap_above[i, j]:
-                # over the footprint: 0.8; hung behind it: less, the farther behind
-                behind = max(0.0, -float(ox[i, j]), -float(oy[i, j]))
-                out.append(Relation(ids[i], ids[j], "above", 0.8 - 0.4 * behind / ABOVE_XY_MARGIN))
+            elif bottom_to_top[i, j] >= -ON_Z_TOL and overlap_margin[i, j]:
+                out.append(Relation(ids[i], ids[j], "above", 0.8))
             elif (
                 (lo[i] >= lo[j] - 0.02).all()
                 and (hi[i] <= hi[j] + 0.02).all()
