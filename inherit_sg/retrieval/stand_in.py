@@ -31,6 +31,8 @@ PLACING = ("on", "inside")
 # label term below NOTHING_LIKE): "find my phone down the side of the sofa".
 NEARNESS = ("next_to", "near")
 NOTHING_LIKE = 0.2
+# Parts of the building are no place to go to for a thing ("it sits on the floor").
+_STRUCTURE = frozenset({"floor", "wall", "ceiling", "ground", "carpet"})
 
 
 def _best_label(spec: NodeSpec, ranked: Sequence[Scored]) -> float | None:
@@ -69,6 +71,8 @@ def said_place(spec: NodeSpec, likeness: float) -> NodeSpec | None:
         and not c.negated
         and c.predicate in kinds
         and c.id in spec.landmarks
+        and c.landmark.target.noun not in _STRUCTURE
+        and not set(c.landmark.target.labels) & _STRUCTURE
     ]
     if not placed:
         return None

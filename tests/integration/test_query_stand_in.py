@@ -46,3 +46,9 @@ def test_a_place_the_map_lacks_keeps_the_first_answer(engine: QueryEngine) -> No
     # no piano in the map: nothing to stand in for the glasses
     result = engine.query("my glasses are on the piano")
     assert not any("answering where the request places it" in line for line in result.trace)
+
+
+def test_the_floor_is_no_place_to_go_to(engine: QueryEngine) -> None:
+    # "my glasses are on the floor": no stand-in (the floor is everywhere)
+    result = engine.query("my glasses are on the floor")
+    assert not any("answering where the request places it" in line for line in result.trace)

@@ -142,7 +142,13 @@ def without_personal_asides(sentences: list[list[Word]]) -> list[list[Word]]:
     ]
     if not any(_asks(p) for p in rest):
         return sentences
-    if any(w.text in _BACK_REFERENCES for p in rest for w in p):
+    named = [
+        p
+        for ps, row in zip(parts, asides, strict=True)
+        for p, a in zip(ps, row, strict=True)
+        if a and not (p[0].text in _SPEAKER and _speaker_state(p))
+    ]
+    if named and any(w.text in _BACK_REFERENCES for p in rest for w in p):
         return sentences  # "nobody uses the treadmill, move it": the aside names it
     out: list[list[Word]] = []
     for ps, row in zip(parts, asides, strict=True):

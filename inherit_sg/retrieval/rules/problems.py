@@ -202,23 +202,32 @@ def _question_starts(words: list[Word], i: int) -> bool:
 
 # Words that open a trailing statement of what stands in the way ("… but it's too dark").
 _OBSTACLE_OPENERS = frozenset({"but"})
+# Words that make "it is …" a complaint, not a description ("it's getting dark", "it's
+# too cold", "it's boiling in here"; not "it is round and dark wood").
+_DEGREE = frozenset({"too", "so", "getting", "really", "very", "bit", "boiling", "freezing",
+                     "pitch", "awfully", "quite", "rather"})  # fmt: skip
 
 
 def trailing_problem(
     sentences: list[list[Word]],
 ) -> tuple[FunctionConstraint | None, list[list[Word]]]:
     """A problem stated after what the speaker wants to do, as what stands in the way
-    ("I want to read in bed but it's too dark", "I'd like to read. It's too dark."):
+    ("I want to read in bed but it's too dark", "I'd like to read. It's too dark.",
+    "switch on the lamp, it's getting dark"):
     the function it implies, and the sentences without it; (None, sentences) else."""
     if not sentences:
         return None, sentences
     last = [w for w in sentences[-1] if w.text != "."]
     cut = max((i for i, w in enumerate(last) if w.text in _OBSTACLE_OPENERS), default=-1)
+    if cut < 0:  # "switch on the lamp, it's getting dark": a last clause of its own
+        cut = max((i for i, w in enumerate(last) if w.text == ","), default=-1)
     tail = last[cut + 1 :] if cut >= 0 else last
     if (cut < 0 and len(sentences) < 2) or not tail or not _is_statement(tail):
         return None, sentences
     if tail[0].text not in ("it", "i", "we") or any(w.text == "," for w in tail):
         return None, sentences  # "… but the lamp is too dim": a thing, not the speaker's
+    if tail[0].text == "it" and not any(w.text in _DEGREE for w in tail):
+        return None, sentences  # "…, it is round and dark wood": the thing described
     if any(w.pos in ("NOUN", "PROPN") and object_vocab.canonical_label(w.text) for w in tail):
         return None, sentences  # "it is between the two armchairs …": a thing placed
     sense = match_problem(tail)

@@ -35,10 +35,13 @@
 - "the shelf the TV sits on", "the box that the keys are in": a relative clause whose
   object is the thing sought, its preposition left at the end, reads as "the shelf with
   the TV on it".
+- "the thing that plays the sound", "the machine that washes them": something to play
+  the sound, something to wash them (a purpose, not the thing its verb acts on).
 """
 
 from __future__ import annotations
 
+from inherit_sg.retrieval.rules.functions import knows_verb
 from inherit_sg.retrieval.rules.tokens import COMMA, IN, THE, A, Word
 from inherit_sg.vocab.colours import colour_words
 from inherit_sg.vocab.lexicon import lexicon
@@ -750,4 +753,30 @@ def stranded_relative(sentence: list[Word]) -> list[Word]:
             if texts[v:end] == words and (end == len(sentence) or texts[end] in _CLAUSE_END):
                 thing = sentence[j:n]
                 return [*sentence[:k], _WITH, *thing, *sentence[v:end], _IT_AFTER, *sentence[end:]]
+    return sentence
+
+
+# Words for a thing named by what it does ("the one that …" refers back to a kind named
+# before: "the microwave, the one that beeps").
+_THING_WORDS = frozenset(
+    {"thing", "thingy", "machine", "gadget", "device", "contraption", "appliance"}
+)
+_SOMETHING_WORD = Word("something", "something", "PRON", "NN", "dobj")
+_TO = Word("to", "to", "PART", "TO", "aux")
+
+
+def thing_that_does(sentence: list[Word]) -> list[Word]:
+    """ "the thing that plays the sound", "the machine that washes them" as "something to
+    play the sound", "something to wash them": a thing named by what it does is sought
+    for that purpose, not the thing its verb acts on."""
+    texts = [w.text for w in sentence]
+    for k in range(len(sentence) - 2):
+        if texts[k] not in _THING_WORDS or texts[k + 1] not in ("that", "which"):
+            continue
+        verb = sentence[k + 2]
+        if verb.tag not in ("VBZ", "VBP") or not knows_verb(verb.lemma):
+            continue  # "the thing that beeps": no purpose the vocabulary knows
+        start = k - 1 if k > 0 and texts[k - 1] in ("the", "a", "this", "that", "some") else k
+        done = Word(verb.lemma, verb.lemma, "VERB", "VB", "xcomp")
+        return [*sentence[:start], _SOMETHING_WORD, _TO, done, *sentence[k + 3 :]]
     return sentence
