@@ -304,9 +304,14 @@ class QueryEngine:
         if place is not None:
             placed = self._rank_spec(place, trace, view, viewer)
             if place_found(place, placed):
+                what = (
+                    f"no {parsed.target.describe()} in the map"
+                    if parsed.target.labels
+                    else f"nothing mapped is in or on the {place.target.describe()}"
+                )
                 trace.append(
-                    f"no {parsed.target.describe()} in the map: answering where the request "
-                    f"places it, the {place.target.describe()}"
+                    f"{what}: answering where the request places it, the "
+                    f"{place.target.describe()}"
                 )
                 spec, ranked = place, placed
         trace.extend(explain_ranking(snap, ranked, k))

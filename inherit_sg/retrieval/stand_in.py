@@ -47,7 +47,18 @@ def _best_label(spec: NodeSpec, ranked: Sequence[Scored]) -> float | None:
 
 def absent(spec: NodeSpec, ranked: Sequence[Scored]) -> float | None:
     """How well the best candidate matches the kind ``spec`` names, when the map holds
-    nothing of it (below :data:`ABSENT_LABEL`); None when it does or names no kind."""
+    nothing of it (below :data:`ABSENT_LABEL`); None when it does or names no kind. A
+    request for whatever is in or on a thing ("what's in that box under the mirror?")
+    counts as absent when no candidate is really in or on it (the contents are not
+    mapped; the box is where to go)."""
+    if not spec.target.labels and not spec.target.function:
+        placed = [
+            c.id
+            for c in spec.scored()
+            if isinstance(c, RelationConstraint) and not c.negated and c.predicate in PLACING
+        ]
+        held = max((c.terms[i].sim for c in ranked for i in placed if i in c.terms), default=0.0)
+        return 1.0 if placed and held < ABSENT_LABEL else None
     best = _best_label(spec, ranked)
     return best if best is not None and best < ABSENT_LABEL else None
 

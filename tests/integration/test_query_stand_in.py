@@ -52,3 +52,10 @@ def test_the_floor_is_no_place_to_go_to(engine: QueryEngine) -> None:
     # "my glasses are on the floor": no stand-in (the floor is everywhere)
     result = engine.query("my glasses are on the floor")
     assert not any("answering where the request places it" in line for line in result.trace)
+
+
+def test_what_is_inside_a_thing_goes_to_the_thing(engine: QueryEngine) -> None:
+    # the map holds nothing inside the refrigerator: the refrigerator is where to go
+    result = engine.query("what's inside the refrigerator?")
+    assert result.answer_id == "obj:f1"
+    assert any("nothing mapped is in or on" in line for line in result.trace)
