@@ -26,6 +26,7 @@ def engine(tmp_path_factory: pytest.TempPathFactory) -> Iterator[QueryEngine]:
     [
         ("Could you leave my glasses on the nightstand?", "obj:n1"),
         ("my keys are on the sofa, grab them", "obj:s1"),
+        ("put my glasses on the nightstand", "obj:n1"),
     ],
 )
 def test_an_unmapped_thing_is_found_where_it_is_put(

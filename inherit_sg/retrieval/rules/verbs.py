@@ -10,6 +10,7 @@ is offered as the request's head.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from inherit_sg.retrieval.constraints import (
@@ -216,9 +217,11 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
     going = _destination_relation(obj) if tok.lemma in _PLACING_VERBS and named else None
     if going is not None and obj is not None and first not in _AT_HAND:
         # "put the DVD on the top shelf", "hang the coat on the hook": the thing to move
-        # is sought; where it goes says nothing about where it is now ("put this letter
-        # on the desk": the letter is at hand, the desk is sought)
-        obj.constraints = [c for c in obj.constraints if c is not going]
+        # is sought; where it goes says little about where it is now ("put this letter
+        # on the desk": the letter is at hand, the desk is sought). It stays a hint: the
+        # place to go when the map has no such thing ("put my book on the bedside table")
+        hint = replace(going, weight=weighted("relation", "hedge"), text=f"goes {going.text}")
+        obj.constraints = [hint if c is going else c for c in obj.constraints]
         g.notes.append(
             f"'{tok.text} {obj.noun} … {going.landmark.target.noun}': the thing moved is "
             "the target, not where it goes"
