@@ -126,19 +126,3 @@ def test_a_compound_naming_a_room_prefers_its_general_word_in_that_room() -> Non
     # a first word that is itself a kind the map has places by nearness instead
     assert not compound_rooms(parse_rules("the bar stool").constraints, snap)
 
-
-def test_a_tv_cabinet_is_a_cabinet() -> None:
-    # "the sideboard in the den": the map knows a TV stand there and a kitchen cabinet
-    # elsewhere; both are kinds of cabinet, as a sideboard is
-    snap = floor_snapshot(
-        [
-            ("stand", "tv stand", 6.0, 0.0, "tv"),
-            ("cupboard", "kitchen cabinet", -6.0, 0.0, "kitchen"),
-        ],
-        ROOMS,
-        DOORS,
-    )
-    ranked, _ = rank(snap, parse_rules("the sideboard in the den"))
-    assert ranked[0].id == "obj:stand"
-    ranked, _ = rank(snap, parse_rules("the cabinet in the kitchen"))
-    assert ranked[0].id == "obj:cupboard"
