@@ -310,8 +310,7 @@ class QueryEngine:
                     else f"nothing mapped is in or on the {place.target.describe()}"
                 )
                 trace.append(
-                    f"{what}: answering where the request places it, the "
-                    f"{place.target.describe()}"
+                    f"{what}: answering where the request places it, the {place.target.describe()}"
                 )
                 spec, ranked = place, placed
         trace.extend(explain_ranking(snap, ranked, k))

@@ -125,4 +125,3 @@ def test_a_compound_naming_a_room_prefers_its_general_word_in_that_room() -> Non
     assert not compound_rooms(parse_rules("the kitchen sink").constraints, _snap())
     # a first word that is itself a kind the map has places by nearness instead
     assert not compound_rooms(parse_rules("the bar stool").constraints, snap)
-

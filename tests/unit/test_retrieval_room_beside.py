@@ -72,3 +72,14 @@ def test_just_off_the_hall_is_off_the_hall() -> None:
     parsed = parse_rules("the mirror in the bathroom just off the front hall")
     rooms = [c for c in parsed.constraints if isinstance(c, RoomConstraint)]
     assert [(r.type, r.beside) for r in rooms] == [("bathroom", "entryway")]
+
+
+def test_the_room_entered_from_another_is_the_one_beside_it() -> None:
+    parsed = parse_rules(
+        "As you walk into the little bathroom from the front hall, the towel on your left."
+    )
+    assert parsed.viewpoint is not None
+    (room,) = [c for c in parsed.viewpoint.landmark.constraints if isinstance(c, RoomConstraint)]
+    assert (room.type, room.name, room.beside) == ("bathroom", "small bathroom", "entryway")
+    ranked, _ = rank(_snap(), parsed)
+    assert ranked[0].id == "obj:towel_a"

@@ -668,6 +668,14 @@ class ClauseParser(Grammar):
             self._skip_clause()  # "if you stand where the rug ends, …": context only
             return True
         looked_at = lm
+        if lm is not None and lm.kind == ROOM and self.at("from") and self.np_start(1):
+            here = self.state()
+            self.advance()
+            origin = self.parse_np(landmark=True)  # "into the bathroom from the front hall"
+            if origin is not None and origin.kind == ROOM and not lm.beside:
+                lm.beside = origin.room_type or origin.noun
+            else:
+                self.restore(here)
         if kind == "facing" and self.at("from") and self.np_start(1):
             here = self.state()
             self.advance()
@@ -1545,10 +1553,9 @@ class ClauseParser(Grammar):
 
     def _place(self, np: NP, neg: bool) -> Constraint:
         if np.kind == ROOM:
-            return RoomConstraint(
-                type=np.room_type, name=np.noun, negated=neg, weight=self.weight("room"),
-                text=np.noun, beside=np.beside,
-            )  # fmt: skip
+            # its size, side and neighbour say which room ("the little bathroom")
+            room = self._room(np, neg, np.noun, None)
+            return replace(room, weight=self.weight("room"))
         return AreaConstraint(label=np.noun, negated=neg, weight=self.weight("area"), text=np.noun)
 
 
