@@ -45,6 +45,7 @@ MP3D_MORE = {
     "mp3d_seventh": "mp3d_requests_seventh",
     "mp3d_eighth": "mp3d_requests_eighth",
     "mp3d_ninth": "mp3d_requests_ninth",
+    "mp3d_tenth": "mp3d_requests_tenth",
 }
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
