@@ -77,9 +77,6 @@ HYPONYM = 0.9
 # A map label more general than the thing asked for ("light" for "ceiling light", "rug"
 # for "bath mat"): the detector's word for it may be the general one.
 HYPERNYM = 0.7
-# A kind that shows where the wanted one is (curtains at a window) matches this well:
-# less than the kind itself or a kind of it, enough to stand for it.
-MARK_SIM = 0.6
 # ... less by this for every further step up ("light" for "table lamp", after "lamp").
 HYPERNYM_STEP = 0.1
 # ... plus up to this much by text-embedding resemblance to the word asked for, so that
@@ -254,8 +251,6 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
             found = _sibling(label, parents)
             if found is not None and (label not in out or out[label][0] < found[0]):
                 out[label] = found
-    if not con.negated:
-        _marking(out, labels, wanted)  # "closest to the window": where the curtains hang
     if general and queries:
         # among general words, the one closer in meaning to the request leads a little
         names = sorted(general)
@@ -266,17 +261,6 @@ def _object_labels(con: LabelConstraint, snap: MapSnapshot, sim: PhraseSimilarit
             if label not in out or out[label][0] < found[0]:
                 out[label] = found
     return out
-
-
-def _marking(out: Matches, labels: list[str], wanted: set[str]) -> None:
-    """Map labels of kinds that show where a wanted kind is (a curtain hangs at a window,
-    ``objects.toml`` ``marks``) match at :data:`MARK_SIM`, in place: a map seldom holds
-    the window "the chair closest to the window" measures to, but its curtains."""
-    for label in labels:
-        shown = {m for kind in canonical_labels(label) for m in object_vocab.marks(kind)}
-        if shown & wanted and (label not in out or out[label][0] < MARK_SIM):
-            seen = sorted(shown & wanted)[0]
-            out[label] = (MARK_SIM, f"a {label} shows where a {seen} is (vocabulary)")
 
 
 def _serving(labels: list[str], kinds: Sequence[str], function: str, how: str = "") -> Matches:

@@ -26,7 +26,7 @@ from inherit_sg.vocab import VocabularyError, load_table, require, string_list
 
 _FILE = "objects.toml"
 _TOP_KEYS = frozenset({"version", "kinds", "general"})
-_KIND_KEYS = frozenset({"synonyms", "is_a", "parts", "detect", "placement", "marks"})
+_KIND_KEYS = frozenset({"synonyms", "is_a", "parts", "detect", "placement"})
 # Where in its room a kind typically stands (a kitchen island in the middle).
 _PLACEMENTS = frozenset({"wall", "corner", "centre"})
 _GENERAL_KEYS = frozenset({"words", "is_a", "typical"})
@@ -51,7 +51,6 @@ class Kind:
     parts: tuple[str, ...]
     detect: bool
     placement: str = ""
-    marks: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -183,7 +182,6 @@ def _parse_kinds(data: dict[str, Any]) -> tuple[dict[str, Kind], dict[str, str]]
             parts=_phrases(entry, "parts", where),
             detect=detect,
             placement=placement,
-            marks=_phrases(entry, "marks", where),
         )
         if label in kind.is_a:
             raise VocabularyError(f"{where}: 'is_a' names the kind itself")
@@ -493,13 +491,6 @@ def is_kind_of(label: str, general: str) -> bool:
         found = _name(key, voc)
         name = found[0] if found else None
     return name is not None and name != kind and name in voc.ancestors[kind]
-
-
-def marks(label: str) -> tuple[str, ...]:
-    """The kinds a kind shows the place of, where a map may lack them ("curtain": the
-    window it hangs at)."""
-    kind = vocabulary().kinds.get(label)
-    return kind.marks if kind is not None else ()
 
 
 def typical_placement(label: str) -> str:

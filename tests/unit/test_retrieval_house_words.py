@@ -125,32 +125,3 @@ def test_a_compound_naming_a_room_prefers_its_general_word_in_that_room() -> Non
     assert not compound_rooms(parse_rules("the kitchen sink").constraints, _snap())
     # a first word that is itself a kind the map has places by nearness instead
     assert not compound_rooms(parse_rules("the bar stool").constraints, snap)
-
-
-def test_curtains_show_where_the_window_is() -> None:
-    # the map has no window, but curtains: "the stool closest to the window" measures to them
-    snap = floor_snapshot(
-        [
-            ("curtains", "curtain", -9.0, 0.0, "kitchen"),
-            ("stool_far", "stool", -2.0, 0.0, "kitchen"),
-            ("stool_near", "stool", -8.0, 0.0, "kitchen"),
-        ],
-        ROOMS,
-        DOORS,
-    )
-    ranked, notes = rank(snap, parse_rules("the stool closest to the window"))
-    assert ranked[0].id == "obj:stool_near"
-    assert any("curtain" in n for n in notes)
-    # a window the map has is the landmark, before any curtain
-    with_window = floor_snapshot(
-        [
-            ("window", "window", -1.0, 0.0, "kitchen"),
-            ("curtains", "curtain", -9.0, 0.0, "kitchen"),
-            ("stool_far", "stool", -2.0, 0.0, "kitchen"),
-            ("stool_near", "stool", -8.0, 0.0, "kitchen"),
-        ],
-        ROOMS,
-        DOORS,
-    )
-    ranked, _ = rank(with_window, parse_rules("the stool closest to the window"))
-    assert ranked[0].id == "obj:stool_far"
