@@ -424,11 +424,14 @@ def shared_room(
     key: str, lm: Landmark, parent: tuple[Constraint, ...], con: Constraint | None = None
 ) -> tuple[Constraint, ...]:
     """The weak room constraint a landmark object takes from the request's own room: a
-    thing placed by a landmark, or seen from one, is mostly in the landmark's room ("the
-    bedroom lamp that's not near the curtains": the bedroom's curtains). None when the
-    landmark names its own room or is no object, or when the request's room is ruled out
-    or implied rather than said."""
+    thing placed by a landmark, or seen from one, is mostly in the landmark's room. None
+    when the landmark names its own room or is no object, when the request's room is
+    ruled out or implied rather than said, or when the relation itself is ruled out ("a
+    TV stand in the lounge, not the one with a door near it": a door of the hall next
+    door counts too)."""
     if lm.target.layer != "object" or any(isinstance(c, RoomConstraint) for c in lm.constraints):
+        return ()
+    if con is not None and con.negated:
         return ()
     said = [
         c for c in parent if isinstance(c, RoomConstraint) and not c.negated and "~" not in c.id
