@@ -490,11 +490,6 @@ class Scorer:
             if view is not None:
                 found[con.id] = directional_all(self.snap, view, ids, con.predicate, first)
             else:
-                if con.negated:
-                    # a thing is ruled out by what best matches the landmark ("not on the
-                    # big sofa": not the cushion on an armchair that might be one)
-                    top = set(best_landmarks(first))
-                    first = [(lid, q) for lid, q in first if lid in top]
                 held = self.checker.relation_all(ids, con.predicate, first)
                 # partial credit for being close counts only the best landmarks: near
                 # the front door, not near any door that might be it
