@@ -35,6 +35,15 @@ NOTHING_LIKE = 0.2
 _STRUCTURE = frozenset({"floor", "wall", "ceiling", "ground", "carpet"})
 
 
+def _placing(spec: NodeSpec, kinds: tuple[str, ...]) -> list[RelationConstraint]:
+    """The wanted relations of ``spec`` whose predicate is one of ``kinds``."""
+    return [
+        c
+        for c in spec.scored()
+        if isinstance(c, RelationConstraint) and not c.negated and c.predicate in kinds
+    ]
+
+
 def _best_label(spec: NodeSpec, ranked: Sequence[Scored]) -> float | None:
     """The best label term among ``ranked`` (None when ``spec`` names no kind)."""
     label = next(
@@ -52,11 +61,7 @@ def absent(spec: NodeSpec, ranked: Sequence[Scored]) -> float | None:
     counts as absent when no candidate is really in or on it (the contents are not
     mapped; the box is where to go)."""
     if not spec.target.labels and not spec.target.function:
-        placed = [
-            c.id
-            for c in spec.scored()
-            if isinstance(c, RelationConstraint) and not c.negated and c.predicate in PLACING
-        ]
+        placed = [c.id for c in _placing(spec, PLACING)]
         held = max((c.terms[i].sim for c in ranked for i in placed if i in c.terms), default=0.0)
         return 1.0 if placed and held < ABSENT_LABEL else None
     best = _best_label(spec, ranked)
@@ -77,11 +82,8 @@ def said_place(spec: NodeSpec, likeness: float) -> NodeSpec | None:
     kinds = PLACING + (NEARNESS if likeness < NOTHING_LIKE else ())
     placed = [
         c
-        for c in spec.scored()
-        if isinstance(c, RelationConstraint)
-        and not c.negated
-        and c.predicate in kinds
-        and c.id in spec.landmarks
+        for c in _placing(spec, kinds)
+        if c.id in spec.landmarks
         and c.landmark.target.noun not in _STRUCTURE
         and not set(c.landmark.target.labels) & _STRUCTURE
     ]

@@ -13,7 +13,8 @@ light" → "in the family room, block out the light").
 from __future__ import annotations
 
 from inherit_sg.retrieval.rules.problems import match_problem
-from inherit_sg.retrieval.rules.tokens import COMMA, Word
+from inherit_sg.retrieval.rules.rewording import comma_parts, joined_parts
+from inherit_sg.retrieval.rules.tokens import Word
 from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.rooms import room_type
 
@@ -83,16 +84,6 @@ def _room_phrase(clause: list[Word]) -> list[Word]:
     return []
 
 
-def _parts(sentence: list[Word]) -> list[list[Word]]:
-    parts: list[list[Word]] = [[]]
-    for w in sentence:
-        if w is COMMA or w.text == ",":
-            parts.append([])
-        else:
-            parts[-1].append(w)
-    return [p for p in parts if p]
-
-
 # The speaker's own statements are asides only when they say where or how the speaker
 # is ("I'm up to my elbows in laundry", "I'm on the phone"); what the speaker did or
 # thinks often names the thing sought ("I left my badge on my desk", "I believe there's
@@ -130,34 +121,19 @@ def _aside(clause: list[Word]) -> bool:
 def without_personal_asides(sentences: list[list[Word]]) -> list[list[Word]]:
     """The request without the clauses that only say something of the speaker or of
     others (see the module docstring), when another clause asks for something."""
-    parts = [_parts(s) for s in sentences]
-    asides = [[_aside(p) for p in ps] for ps in parts]
-    if not any(a for row in asides for a in row):
+    marked = [[(p, _aside(p)) for p in comma_parts(s)] for s in sentences]
+    flat = [pair for row in marked for pair in row]
+    rest = [p for p, aside in flat if not aside]
+    if len(rest) == len(flat) or not any(_asks(p) for p in rest):
         return sentences
-    rest = [
-        p
-        for ps, row in zip(parts, asides, strict=True)
-        for p, a in zip(ps, row, strict=True)
-        if not a
-    ]
-    if not any(_asks(p) for p in rest):
-        return sentences
-    named = [
-        p
-        for ps, row in zip(parts, asides, strict=True)
-        for p, a in zip(ps, row, strict=True)
-        if a and not (p[0].text in _SPEAKER and _speaker_state(p))
-    ]
+    # "nobody uses the treadmill, move it": an aside that may name what "it" points back at
+    named = any(aside and not (p[0].text in _SPEAKER and _speaker_state(p)) for p, aside in flat)
     if named and any(w.text in _BACK_REFERENCES for p in rest for w in p):
-        return sentences  # "nobody uses the treadmill, move it": the aside names it
+        return sentences
     out: list[list[Word]] = []
-    for ps, row in zip(parts, asides, strict=True):
-        kept: list[list[Word]] = []
-        for p, aside in zip(ps, row, strict=True):
-            if not aside:
-                kept.append(p)
-            elif room := _room_phrase(p):
-                kept.append(room)
+    for row in marked:
+        kept = [p if not aside else _room_phrase(p) for p, aside in row]
+        kept = [p for p in kept if p]  # an aside keeps only the room it names
         if kept:
-            out.append([w for k, p in enumerate(kept) for w in ([COMMA] if k else []) + p])
+            out.append(joined_parts(kept))
     return out or sentences

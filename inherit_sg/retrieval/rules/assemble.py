@@ -20,6 +20,7 @@ from inherit_sg.retrieval.query import ParsedQuery, number_constraints
 from inherit_sg.retrieval.rules.clause import Clause
 from inherit_sg.retrieval.rules.cursor import weighted
 from inherit_sg.retrieval.rules.functions import match_function
+from inherit_sg.retrieval.rules.grammar import Grammar
 from inherit_sg.retrieval.rules.phrase import (
     ANAPHOR,
     GENERIC,
@@ -307,11 +308,7 @@ def assemble(
     if head.kind == ROOM and functions and _within(words, head):
         # "I'd like to wash my hands — where should I go in the kitchen?": a thing in it
         notes.append(f"{head.noun!r} is where; the need is met by a thing in it")
-        clause.places.append(
-            RoomConstraint(
-                type=head.room_type, name=head.noun, weight=weighted("room", None), text=head.noun
-            )
-        )
+        clause.places.append(Grammar.room_place(head))
         head = NP(kind=GENERIC)
     own = _instrument(head, own, functions, notes)
     head.constraints = functions + [c for c in own if not isinstance(c, FunctionConstraint)]

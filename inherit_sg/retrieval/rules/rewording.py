@@ -216,12 +216,12 @@ def without_remarks_on_others(sentences: list[list[Word]]) -> list[list[Word]]:
     if sentences:
         sentences = [_only_one_there(sentences[0]), *sentences[1:]]
     for sentence in sentences:
-        clauses = _clauses(sentence)
+        clauses = comma_parts(sentence)
         kept = [c[_after_room_remark(c) :] for c in clauses if not _remarks_on_others(c)]
         if kept == clauses:
             out.append(sentence)
         elif kept:
-            out.append([w for k, c in enumerate(kept) for w in ([COMMA] if k else []) + c])
+            out.append(joined_parts(kept))
     return out if any(out) else sentences
 
 
@@ -238,7 +238,7 @@ def _only_one_there(sentence: list[Word]) -> list[Word]:
     return [*sentence[:2], A, *sentence[4:]]
 
 
-def _clauses(sentence: list[Word]) -> list[list[Word]]:
+def comma_parts(sentence: list[Word]) -> list[list[Word]]:
     """A sentence's parts between commas."""
     parts: list[list[Word]] = [[]]
     for w in sentence:
@@ -247,6 +247,11 @@ def _clauses(sentence: list[Word]) -> list[list[Word]]:
         else:
             parts[-1].append(w)
     return [p for p in parts if p]
+
+
+def joined_parts(parts: list[list[Word]]) -> list[Word]:
+    """Parts of a sentence (:func:`comma_parts`) joined again, a comma between each."""
+    return [w for k, part in enumerate(parts) for w in ([COMMA] if k else []) + part]
 
 
 _BESIDES = Word("beside", "beside", "ADP", "IN", "prep")
