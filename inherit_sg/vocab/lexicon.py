@@ -116,6 +116,8 @@ class Lexicon:
     fault_verbs: frozenset[str]
     determiners: frozenset[str]
     seekers: frozenset[str]
+    report_sources: frozenset[str]
+    report_verbs: frozenset[str]
     anaphors: frozenset[str]
     other_words: frozenset[str]
     subordinators: frozenset[str]
@@ -141,6 +143,8 @@ class Lexicon:
     locative_verbs: frozenset[str]
     locative_prepositions: frozenset[str]
     copular_verbs: frozenset[str]
+    chore_verbs: frozenset[str]
+    chore_prepositions: frozenset[str]
     viewpoints: dict[str, str]
     frames: dict[str, frozenset[str]]
     refine_openers: tuple[tuple[str, ...], ...]
@@ -224,6 +228,8 @@ def lexicon() -> Lexicon:
         fault_verbs=_words(data, "logic", "fault_verbs"),
         determiners=frozenset(_list(words, "determiners", where)),
         seekers=frozenset(_list(words, "seekers", where)),
+        report_sources=frozenset(_list(words, "report_sources", where)),
+        report_verbs=frozenset(_list(words, "report_verbs", where)),
         anaphors=frozenset(_list(words, "anaphors", where)),
         other_words=frozenset(_list(words, "other", where)),
         subordinators=frozenset(_list(words, "subordinators", where)),
@@ -251,6 +257,8 @@ def lexicon() -> Lexicon:
         locative_verbs=frozenset(_list(verbs, "locative", where)),
         locative_prepositions=frozenset(_list(verbs, "locative_prepositions", where)),
         copular_verbs=frozenset(_list(verbs, "copular", where)),
+        chore_verbs=frozenset(_list(verbs, "chores", where)),
+        chore_prepositions=frozenset(_list(verbs, "chore_prepositions", where)),
         viewpoints=_str_map(_section(data, "viewpoints"), "viewpoints"),
         frames={
             k: frozenset(_list(frames, k, where))

@@ -41,6 +41,8 @@
 
 from __future__ import annotations
 
+from itertools import pairwise
+
 from inherit_sg.retrieval.rules.functions import knows_verb
 from inherit_sg.retrieval.rules.tokens import COMMA, IN, THE, A, Word
 from inherit_sg.vocab.colours import colour_words
@@ -785,3 +787,79 @@ def thing_that_does(sentence: list[Word]) -> list[Word]:
         done = Word(verb.lemma, verb.lemma, "VERB", "VB", "xcomp")
         return [*sentence[:start], _SOMETHING_WORD, _TO, done, *sentence[k + 3 :]]
     return sentence
+
+
+_GO = Word("go", "go", "VERB", "VB", "ROOT")
+_BE_WORDS = frozenset({"is", "are", "was", "were", "be"})
+_TO_PLACE = Word("to", "to", "ADP", "IN", "prep")
+# Words that may open a request before its verb ("please hoover under the sofa").
+_REQUEST_OPENERS = frozenset({"please", "pls", "can", "could", "would", "will", "you"})
+
+
+def chore_at_place(sentence: list[Word]) -> list[Word]:
+    """ "Hoover under the sofa", "dust behind the TV" as "go to the sofa" / "the TV": a
+    chore done under, behind or around a thing (``lexicon.toml`` ``[verbs] chores``) sends
+    the robot to that thing. Not when the sentence says what is sought there ("clean under
+    the bed for the lost sock", "…, there is a box")."""
+    lx = lexicon()
+    k = 0
+    while k < len(sentence) and sentence[k].text in _REQUEST_OPENERS:
+        k += 1
+    if k + 2 >= len(sentence):
+        return sentence
+    verb, prep = sentence[k], sentence[k + 1]
+    if verb.text not in lx.chore_verbs and verb.lemma not in lx.chore_verbs:
+        return sentence
+    if prep.text not in lx.chore_prepositions:
+        return sentence
+    rest = [w.text for w in sentence[k:]]
+    if "for" in rest or any(a == "there" and b in _BE_WORDS for a, b in pairwise(rest)):
+        return sentence  # "… for my slippers", "…, there is a tower": what is sought there
+    if sentence[k + 2].pos not in ("DET", "NOUN", "PROPN", "ADJ"):
+        return sentence
+    return [*sentence[:k], _GO, _TO_PLACE, *sentence[k + 2 :]]
+
+
+# Parts of speech of the words that name who or what a request quotes ("the owner's
+# voice memo", "my sister").
+_SOURCE_POS = frozenset({"DET", "NOUN", "PROPN", "ADJ", "PRON", "NUM"})
+# Words that may come between the reporting verb and what is said ("it says here that").
+_AFTER_REPORT = frozenset({"here", "me", "us", "that", ","})
+
+
+def without_report_frame(sentence: list[Word]) -> list[Word]:
+    """ "The note says the plant needs water", "Owner's memo: 'the toilet keeps running'",
+    "the owner says to water the smaller pot", "according to the note, …": the quoted
+    request without its frame (``lexicon.toml`` ``report_sources`` and ``report_verbs``,
+    or a person of ``seekers``). Other sentences as they are."""
+    lx = lexicon()
+    texts = [w.text for w in sentence]
+    start = 2 if texts[:2] == ["according", "to"] else 0
+    j = start
+    while j < len(sentence) and j - start < 5 and sentence[j].pos in _SOURCE_POS:
+        j += 1
+    if j == start or j >= len(sentence) - 1:
+        return sentence
+    source = " ".join(texts[start:j])
+    if texts[start] in ("nobody", "no", "none", "noone"):
+        return sentence  # "nobody told me we were out of tape": nothing is quoted
+    said_by = texts[j - 1] in lx.report_sources or source in lx.report_sources
+    if not said_by and texts[j - 1] in lx.seekers and texts[j - 1] not in _SPEAKERS:
+        said_by = start > 0 or texts[j] in lx.report_verbs
+    if not said_by:
+        return sentence
+    if start > 0 or texts[j] == ",":  # "according to the note, …", "Owner's memo: …"
+        if texts[j] != "," or (texts[j - 1] == "it" and start == 0):
+            return sentence
+    elif texts[j] not in lx.report_verbs:
+        return sentence
+    k = j + 1
+    while k < len(sentence) and texts[k] in _AFTER_REPORT:
+        k += 1
+    if k < len(sentence) - 1 and texts[k] == "to" and sentence[k + 1].tag == "VB":
+        k += 1  # "the note says to water the plant": the command
+    return sentence[k:] if k < len(sentence) else sentence
+
+
+# Who speaks or listens: "I said the lamp, not the fan" corrects, it quotes no one.
+_SPEAKERS = frozenset({"i", "me", "you", "we", "us", "myself", "yourself", "one"})

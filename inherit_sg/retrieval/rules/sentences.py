@@ -17,6 +17,7 @@ from inherit_sg.retrieval.rules.asides import without_personal_asides
 from inherit_sg.retrieval.rules.rewording import (
     another_as_one_more,
     besides_as_beside,
+    chore_at_place,
     floor_asked,
     non_words,
     only_thing,
@@ -75,7 +76,7 @@ def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     sentences = [without_failed_condition(without_manner(without_no_longer(s))) for s in sentences]
     sentences = [set_aside_first(without_trailing_caution(which_of_is(s))) for s in sentences]
     sentences = [owner_side(only_thing(without_noticing_remark(s))) for s in sentences]
-    sentences = [thing_that_does(stranded_relative(s)) for s in sentences]
+    sentences = [thing_that_does(stranded_relative(chore_at_place(s))) for s in sentences]
     sentences = [besides_as_beside(s) for s in without_remarks_on_others(sentences)]
     sentences = [
         whose_as_with(without_sign_negation(another_as_one_more(without_moved_away(s))))

@@ -380,6 +380,28 @@ def _verb_with_object(words: list[Word], i: int) -> bool:
     return any(w.dep == "dobj" for w in words[i + 2 : i + 5])
 
 
+def _mistagged_command(words: list[Word], i: int) -> bool:
+    """Whether the request-opening word ``i``, which spaCy took for a noun, a name or an
+    adverb ("Fluff the cushions", "Hoover the rug", "Dust the chandelier"), is a command:
+    an English verb (by spaCy's lemma lists) in the singular, right before a determiner
+    and a noun other than "one" ("chair the one by the window" names a chair)."""
+    word = words[i]
+    if word.pos not in ("NOUN", "PROPN", "ADV") or word.tag in ("NNS", "NNPS"):
+        return False
+    if i + 2 >= len(words) or words[i + 1].text not in _OBJECT_DETERMINERS:
+        return False
+    if words[i + 1].text in ("that", "this") or word.text in colour_vocab.colour_words():
+        return False  # "chair that has a backpack", "brown the cabinet under the sink"
+    if not known_lemma(word.text.lower(), "verb"):
+        return False
+    for after in words[i + 2 : i + 6]:
+        if after.pos == "ADP" or after.text in ("one", "ones", ","):
+            return False
+        if after.pos in ("NOUN", "PROPN") and after.dep != "compound":
+            return after.dep in ("dobj", "appos", "npadvmod", "nsubj")  # its object
+    return False
+
+
 def _verb_for_me(words: list[Word], i: int) -> bool:
     """Whether the clause-opening word ``i``, a verb by spaCy, gives something to the
     speaker ("throw me the ball", "pass us the salt"), though the vocabulary knows it
@@ -656,11 +678,11 @@ def tag(words: list[Word]) -> list[Tok]:
                 _open_readings(tok, words[i])
                 if tok.has("fverb") and (
                     _adjective_after_be(words, i)
-                    or (_modifies_noun(words, i) and set(tok.tags) <= _VERBISH)
+                    or (_modifies_noun(words, i) and set(tok.tags) <= _VERBISH | {"super"})
                 ):
                     # "it is clear and has a blue lid", "lunch box on the windowsill",
                     # "clear plastic storage bin": a word of the thing's look or name, not
-                    # the need "to clear" / "to lunch"
+                    # the need "to clear" / "to lunch"; "lower kitchen cabinet": the lowest
                     _as_description(tok, words[i])
                 if tok.has("be") and _named_after_determiner(words, i):
                     # "a set of two curtains", "in a hanging basket": a noun or a word of
@@ -687,7 +709,9 @@ def tag(words: list[Word]) -> list[Tok]:
                         tok.tags.pop(key, None)
                     tok.tags.setdefault("overb", words[i].lemma)
                 commands = _verb_with_particle(words, i) or _verb_for_me(words, i)
-                if first and (commands or _verb_with_object(words, i)):
+                if first and (
+                    commands or _verb_with_object(words, i) or _mistagged_command(words, i)
+                ):
                     # "Switch on the lamp", "throw me the ball", "vacuum the rug", "switch
                     # the telly off": a command, not a noun
                     for key in ("noun", "unk", "attr"):
@@ -717,7 +741,11 @@ def tag(words: list[Word]) -> list[Tok]:
             if tok.has("modal") and _noun_after_determiner(words, i):
                 tok.tags = {"unk": words[i].text}  # "an empty can on the desk": a thing
                 tok.pos, tok.tag = "NOUN", "NN"
-            if first and _verb_before_object(words, i) and tok.has("unk"):
+            if (
+                first
+                and tok.has("unk")
+                and (_verb_before_object(words, i) or _mistagged_command(words, i))
+            ):
                 # "… and dust the bookcase": spaCy's noun is the command's verb
                 tok.tags = {"overb": words[i].text, "seek": words[i].text}
                 tok.pos, tok.tag = "VERB", "VB"
@@ -760,7 +788,11 @@ def _any_but(toks: list[Tok]) -> list[Tok]:
 
 
 # Determiners that open a command's object right after its verb ("dust the bookcase").
-_OBJECT_DETERMINERS = frozenset({"the", "a", "an", "this", "that", "these", "those", "my", "your"})
+# Determiners that open the object of a command ("dust the bookcase", "mop my floor").
+_OBJECT_DETERMINERS = frozenset(
+    {"the", "a", "an", "my", "your", "our", "his", "her", "their", "all", "those", "these",
+     "that", "this", "some", "each", "every"}
+)  # fmt: skip
 
 
 def _verb_before_object(words: list[Word], i: int) -> bool:

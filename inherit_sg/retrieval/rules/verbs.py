@@ -75,6 +75,21 @@ def _passive_of_thing(g: Grammar, start: int) -> bool:
     return aux.lemma in ("get", "be") and subject.pos == "PRON" and subject.text not in _SPEAKERS
 
 
+def _thing_does(g: Grammar, start: int) -> bool:
+    """Whether the verb at ``start``, which the vocabulary does not know, says what a thing
+    does or what happens to it ("the toilet keeps running", "the loo roll has run out"):
+    its subject, past auxiliaries and adverbs, names a thing or a room, not a person."""
+    k = start - 1
+    while k >= 0 and g.toks[k].has("overb", "be", "have", "modal", "adv", "neg"):
+        if g.toks[k].has("seeker", "det", "noun", "room"):
+            break
+        k -= 1
+    if k == start - 1 or k < 0:
+        return False  # no auxiliary between: "the chair to nap in" is read elsewhere
+    subject = g.toks[k]
+    return subject.has("noun", "room", "unk") and not subject.has("seeker")
+
+
 def verb_reading(tok: Tok) -> str | None:
     """The lemma ``tok`` has as a function or light verb, if any."""
     if tok.has("fverb"):
@@ -301,6 +316,9 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         return [made], obj
     if sense is None and tok.lemma in lx.mental_verbs:
         return [], None  # "can't tell the colour well", "I don't know the name": no need
+    if sense is None and _thing_does(g, start):
+        g.notes.append(f"'{tok.text}' said of a thing: not a need of its own")
+        return [], None
     function, labels = sense if sense is not None else (open_function(verb, words), ())
     if sense is None:
         g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
