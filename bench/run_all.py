@@ -46,6 +46,8 @@ MP3D_MORE = {
     "mp3d_eighth": "mp3d_requests_eighth",
     "mp3d_ninth": "mp3d_requests_ninth",
     "mp3d_tenth": "mp3d_requests_tenth",
+    "mp3d_eleventh": "mp3d_requests_eleventh",
+    "mp3d_twelfth": "mp3d_requests_twelfth",
 }
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"

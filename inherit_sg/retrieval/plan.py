@@ -45,6 +45,7 @@ from inherit_sg.retrieval.similarity import PhraseSimilarity
 from inherit_sg.retrieval.snapshot import MapSnapshot, canonical_labels
 from inherit_sg.vocab import objects as object_vocab
 from inherit_sg.vocab.functions import kinds_serving, usual_room
+from inherit_sg.vocab.lexicon import lexicon
 from inherit_sg.vocab.rooms import room_type
 
 _LIVE = "coalesce(o.status, 'active') <> 'removed'"
@@ -257,9 +258,7 @@ def _absent_compounds(
     ]
     if not asked:  # most requests name no compound: no need to look at the map's labels
         return [], set()
-    present: set[str] = set()
-    for raw in snap.raw_labels():
-        present.update({raw.strip().lower(), *canonical_labels(raw)})
+    present = _map_labels(snap)
     out: list[tuple[LabelConstraint, str]] = []
     for con in asked:
         if any(label in present for label in con.labels):
@@ -302,7 +301,10 @@ COMPOUND_ROOM_WEIGHT = 0.5
 
 def _room_word(word: str) -> str | None:
     """The room type a compound's first word names: "kitchen", "office", "dining"
-    (a dining room), "living" (a living room)."""
+    (a dining room), "living" (a living room); not a word of position ("front door",
+    "back door", "side table", though "front room" names a room)."""
+    if word in lexicon().position_nouns:
+        return None
     return room_type(word) or room_type(f"{word} room")
 
 
@@ -325,6 +327,40 @@ def compound_rooms(
             continue
         why = f"a {label} is usually in a {rtype} (the map says only {words[-1]})"
         return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
+    return ()
+
+
+def _map_labels(snap: MapSnapshot) -> set[str]:
+    """The map's labels and their kinds."""
+    present: set[str] = set()
+    for raw in snap.raw_labels():
+        present.update({raw.strip().lower(), *canonical_labels(raw)})
+    return present
+
+
+def absent_landmark_rooms(
+    cons: tuple[Constraint, ...], snap: MapSnapshot
+) -> tuple[Constraint, ...]:
+    """A landmark of a compound kind the map does not have, whose first word names a type
+    of room ("the light over the dining table" in a map that holds no dining table): what
+    is sought by it is likely in such a room, a weak room constraint, when the request
+    names no room itself. (The relation alone would measure from whatever the map holds
+    most like the landmark, a coffee table in another room.)"""
+    if any(isinstance(c, RoomConstraint) for c in cons):
+        return ()
+    for con in cons:
+        if not isinstance(con, RelationConstraint) or con.negated:
+            continue
+        kinds = [label for label in con.landmark.target.labels if " " in label]
+        if not kinds or any(label in _map_labels(snap) for label in con.landmark.target.labels):
+            continue
+        for label in kinds:
+            words = label.split()
+            rtype = _room_word(words[0])
+            if rtype is None or object_vocab.canonical_label(words[0]) is not None:
+                continue
+            why = f"by a {label}, usually in a {rtype} (the map has no {label})"
+            return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
     return ()
 
 
@@ -368,7 +404,7 @@ def usual_placement(cons: tuple[Constraint, ...], snap: MapSnapshot) -> tuple[Co
     for con in cons:
         if not isinstance(con, LabelConstraint) or con.negated:
             continue
-        for label in con.labels:
+        for label in con.labels[:1]:  # the kind asked for ("light" lists chandeliers too)
             where = object_vocab.typical_placement(label)
             if where and label not in held:
                 why = f"a {label} usually stands {_PLACED_AT[where]} (objects.toml)"
@@ -524,6 +560,7 @@ class Compiler:
         near = compound_nearness(cons, self.snap)
         cons = (*cons, *near, *compound_rooms(cons, self.snap, near))
         cons = (*cons, *landmark_room(cons))
+        cons = (*cons, *absent_landmark_rooms(cons, self.snap))
         cons = (*cons, *usual_rooms(cons), *usual_placement(cons, self.snap))
         floor = next((c for c in cons if isinstance(c, FloorConstraint)), None)
         spec = NodeSpec(key, target.layer, target, cons, floor, exclude_ids=exclude)
@@ -647,6 +684,23 @@ class Compiler:
                     {"landmarks": f"<candidates of {spec.landmarks[con.id].key}>"},
                     constraint=con.id,
                 )
+        place = self._place_scope(spec)
+        if place is not None:
+            return place
+        if spec.levels:
+            floors = sorted(f for f, n in self.snap.floors.items() if n.level in spec.levels)
+            return Step(
+                "cypher",
+                spec.key,
+                f"objects on floors {floors}",
+                CYPHER_OBJECTS_ON_FLOORS,
+                {"floors": floors},
+            )
+        return Step("cypher", spec.key, "every object", CYPHER_ALL_OBJECTS)
+
+    @staticmethod
+    def _place_scope(spec: NodeSpec) -> Step | None:
+        """The step selecting the objects of the rooms or areas the request names."""
         for con in spec.constraints:
             if con.negated:
                 continue
@@ -668,16 +722,7 @@ class Compiler:
                     CYPHER_OBJECTS_IN_AREAS,
                     {"areas": areas},
                 )
-        if spec.levels:
-            floors = sorted(f for f, n in self.snap.floors.items() if n.level in spec.levels)
-            return Step(
-                "cypher",
-                spec.key,
-                f"objects on floors {floors}",
-                CYPHER_OBJECTS_ON_FLOORS,
-                {"floors": floors},
-            )
-        return Step("cypher", spec.key, "every object", CYPHER_ALL_OBJECTS)
+        return None
 
     def _viewer_step(self, spec: NodeSpec) -> Step:
         fallback = (

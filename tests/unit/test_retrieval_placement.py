@@ -95,3 +95,7 @@ def test_a_kind_that_stands_in_the_middle_prefers_the_middle() -> None:
     # kinds with no typical placement get none
     chair = (LabelConstraint(id="c1", labels=("chair",), noun="chair"),)
     assert usual_placement(chair, row_snapshot()) == ()
+    # only the kind asked for says where it stands: "light" lists chandeliers among its
+    # kinds, yet a light may hang anywhere
+    light = (LabelConstraint(id="c1", labels=("light", "chandelier"), noun="light"),)
+    assert usual_placement(light, row_snapshot()) == ()

@@ -139,3 +139,21 @@ def test_a_superlative_landmark_takes_no_shared_room() -> None:
     plan = compile_text("the mug in the kitchen closest to the door")
     for spec in plan.target.landmarks.values():
         assert not [c for c in spec.constraints if c.kind == "room"]
+
+
+def test_a_landmark_the_map_lacks_gives_the_room_its_name_says() -> None:
+    from inherit_sg.retrieval.plan import COMPOUND_ROOM_WEIGHT, absent_landmark_rooms
+    from tests.unit.retrieval_fixtures import floor_snapshot
+
+    snap = floor_snapshot([("l1", "light", 0.0, 0.0, None), ("c1", "chair", 1.0, 0.0, None)])
+    parsed = parse_rules("the light over the dining table")
+    (room,) = absent_landmark_rooms(parsed.constraints, snap)
+    assert room.kind == "room" and room.type == "dining room"  # type: ignore[attr-defined]
+    assert room.weight == pytest.approx(COMPOUND_ROOM_WEIGHT) and room.id.endswith("~room")
+    # a map that has a dining table measures from it; a room said wins; a word of
+    # position names no room ("front door", though "front room" is a room)
+    table = floor_snapshot([("t1", "dining table", 0.0, 0.0, None)])
+    assert absent_landmark_rooms(parsed.constraints, table) == ()
+    said = parse_rules("the light over the dining table in the kitchen")
+    assert not [c for c in absent_landmark_rooms(said.constraints, snap)]
+    assert absent_landmark_rooms(parse_rules("the light by the front door").constraints, snap) == ()

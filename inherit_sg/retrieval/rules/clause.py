@@ -1206,13 +1206,15 @@ class ClauseParser(Grammar):
         )
 
     def _negation_open(self) -> bool:
-        """Whether a negation earlier in this clause still holds at the current token:
-        no comma, "and", "but" or subordinate clause since it."""
+        """Whether a negation or an exception earlier in this clause still holds at the
+        current token: no comma, "and", "but" or subordinate clause since it."""
         for j in range(self.i - 1, -1, -1):
             tok = self.toks[j]
             if tok.has("neg"):
                 # "can't remember if it is wood or plastic": what is not known, not ruled out
                 return not self._mental_at(j + 1)
+            if tok.has("except"):
+                return True  # "anywhere except the bedroom or the living room"
             if tok.has("comma", "and", "but", "sub"):
                 return False
         return False

@@ -607,8 +607,10 @@ def _verb_of_subject(words: list[Word], i: int) -> bool:
     if i == 0 or words[i].pos != "VERB" or words[i].tag not in ("VBZ", "VBP"):
         return False
     subject = words[i - 1]
-    if words[i].tag == "VBP" and subject.tag == "NN" and i == 2 and words[0].pos == "DET":
-        return False  # "the dumbbell rack along the wall": a singular noun has no plural verb
+    if words[i].tag == "VBP" and subject.tag == "NN":
+        # "the dumbbell rack along the wall", "the living-room pillow farthest from the
+        # window": a singular noun has no plural verb
+        return False
     if words[i].dep in ("ROOT", "conj", "relcl") and subject.dep == "nsubj":
         return True
     # "the shoes by the door are black and sit on a mat": a second verb of a thing's
