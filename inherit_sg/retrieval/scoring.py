@@ -76,6 +76,9 @@ from inherit_sg.retrieval.sizes import (
 from inherit_sg.retrieval.snapshot import MapSnapshot
 from inherit_sg.retrieval.viewer import KeyframeViews, View, ViewerPose, ViewFinder
 
+# Share of the distance to a landmark's centre added to the distance to its box, when
+# "closest" / "farthest" measure from an object landmark.
+CENTRE_SHARE = 0.1
 # Distance to a landmark, as "closest" measures it (ordinals counted from a landmark).
 _AS_CLOSEST = Superlative(measure="closest")
 # A label / function similarity at least this strong means "is what was named" (exact,
@@ -567,18 +570,32 @@ class Scorer:
             return float(max(node.bbox.size[:2])) if isinstance(node, ObjectNode) else None
         if con.measure in ("closest", "farthest") and landmarks:
             here = self.snap.position(node_id)
+            if here is None:
+                return None
             dists = [
-                math.dist(here, there)
-                for lid in best_landmarks(landmarks)
-                if lid != node_id and here is not None and (there := self.snap.position(lid))
+                self._to_landmark(here, lid) for lid in best_landmarks(landmarks) if lid != node_id
             ]
-            return min(dists) if dists else None
+            found = [d for d in dists if d is not None]
+            return min(found) if found else None
         if con.measure in ("closest", "farthest") and viewer is not None:
             here = self.snap.position(node_id)
             return math.dist(here[:2], viewer) if here is not None else None
         if con.measure in ("most", "fewest") and landmarks:
             return float(len(self._counted(node_id, best_landmarks(landmarks))))
         return None
+
+    def _to_landmark(self, here: Sequence[float], lid: str) -> float | None:
+        """How far a point is from a landmark: from the landmark's box for an object (a
+        long curtain or a sofa is near all along it), with a share of the distance to its
+        centre to tell apart points inside or beside the box; to its position otherwise."""
+        node = self.snap.node(lid)
+        if isinstance(node, ObjectNode):
+            lo, hi = np.asarray(node.bbox.min), np.asarray(node.bbox.max)
+            point = np.asarray(here, dtype=float)
+            edge = float(np.linalg.norm(point - np.clip(point, lo, hi)))
+            return edge + CENTRE_SHARE * float(np.linalg.norm(point - node.bbox.center))
+        there = self.snap.position(lid)
+        return math.dist(here, there) if there is not None else None
 
     def _counted(self, node_id: str, things: list[str]) -> list[str]:
         """Which of ``things`` a node holds: a floor or room the things on it or in it, an

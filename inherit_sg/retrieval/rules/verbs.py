@@ -311,20 +311,27 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         serves = match_function(None, obj.words[-1:])  # "soda" → drink; not "pass" → enter
         if serves is None:
             return [], obj
-        made = FunctionConstraint(function=serves[0], labels=serves[1],
-                                  weight=weighted("function", "hedge"), text=obj.noun)  # fmt: skip
-        return [made], obj
+        fetched = FunctionConstraint(function=serves[0], labels=serves[1],
+                                     weight=weighted("function", "hedge"), text=obj.noun)  # fmt: skip
+        return [fetched], obj
     if sense is None and tok.lemma in lx.mental_verbs:
         return [], None  # "can't tell the colour well", "I don't know the name": no need
-    if sense is None and _thing_does(g, start):
+    made: list[Constraint] = []
+    alone = refused and not any(t.has("noun", "room") for t in g.toks)
+    if sense is None and obj is not None and obj.kind == ANAPHOR and knows_verb(verb) and not alone:
+        # "what can I pull down to block it?": the verb's senses need their object, said
+        # before ("the sun is glaring"), where the need was read already; but "I can't
+        # reach it", said alone, is the need
+        g.notes.append(f"'{tok.text} {obj.noun or 'it'}': the object was said before")
+    elif sense is None and _thing_does(g, start):
         g.notes.append(f"'{tok.text}' said of a thing: not a need of its own")
-        return [], None
-    function, labels = sense if sense is not None else (open_function(verb, words), ())
-    if sense is None:
-        g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
-    span = " ".join([tok.text, *words]).strip()
-    weight = weighted("function", stress)
-    made = FunctionConstraint(function=function, labels=labels, weight=weight, text=span)
+    else:
+        function, labels = sense if sense is not None else (open_function(verb, words), ())
+        if sense is None:
+            g.notes.append(f"function {function!r} is not in the lexicon (kept as written)")
+        span = " ".join([tok.text, *words]).strip()
+        weight = weighted("function", stress)
+        made.append(FunctionConstraint(function=function, labels=labels, weight=weight, text=span))
     # "use the toilet close to the bookshelf", "get a drink in the kitchen": the object's
     # relations and places place the target
     # but with "what could I use to get the creases out of my shirt" the object is what
@@ -335,7 +342,7 @@ def parse_vp(g: Grammar, purpose: bool = False) -> tuple[list[Constraint], NP | 
         else []
     )
     places = list(obj.places) if obj is not None else []
-    return [made, *where, *places, *_done_from(g)], head
+    return [*made, *where, *places, *_done_from(g)], head
 
 
 # Particles that may stand after a verb's object ("put some music on", "turn it off"),
