@@ -143,3 +143,30 @@ def test_unobserved_attributes_are_neutral_not_mismatches() -> None:
     cands = Candidates(found_by={o: ["test"] for o in ("obj:c1", "obj:c2", "obj:c3")})
     ranked, _ = Scorer(snap, GraphChecker(snap)).score(spec, cands, {})
     assert [c.id for c in ranked] == ["obj:c1", "obj:c2", "obj:c3"]
+
+
+def test_closest_measures_from_a_long_landmark_s_box() -> None:
+    """A curtain 3 m long is near all along it: the cushion by its far end is closer to
+    it than one that stands 1 m out from its middle, though farther from its centre."""
+    from inherit_sg.model import BBox3D, Edge, EdgeKind, FloorNode, Layer, ObjectNode, SceneGraph
+    from inherit_sg.model import make_id
+    from inherit_sg.retrieval.snapshot import build_snapshot
+
+    g = SceneGraph()
+    floor = FloorNode(make_id(Layer.FLOOR, 0), 0, "ground", 0.0, 2.8)
+    g.add_or_update(floor)
+    boxes = {
+        "curtain": ((0.0, -1.5, 0.2), (0.05, 1.5, 2.2)),  # along the wall x = 0
+        "cushion_a": ((0.2, 1.3, 0.4), (0.6, 1.7, 0.6)),  # by the curtain's end
+        "cushion_b": ((1.0, -0.2, 0.4), (1.4, 0.2, 0.6)),  # 1 m out from its middle
+    }
+    for key, (lo, hi) in boxes.items():
+        label = key.split("_")[0]
+        box = BBox3D(lo, hi)
+        node = ObjectNode(make_id(Layer.OBJECT, key), label, tuple(box.center), box,
+                          floor_id=floor.id)  # fmt: skip
+        g.add_or_update(node)
+        g.add_edge(Edge.make(EdgeKind.HAS_OBJECT, floor.id, node.id))
+    snap = build_snapshot(g, (1,))
+    assert rank(snap, "the cushion closest to the curtain")[0].id == "obj:cushion_a"
+    assert rank(snap, "the cushion farthest from the curtain")[0].id == "obj:cushion_b"

@@ -863,3 +863,40 @@ def without_report_frame(sentence: list[Word]) -> list[Word]:
 
 # Who speaks or listens: "I said the lamp, not the fan" corrects, it quotes no one.
 _SPEAKERS = frozenset({"i", "me", "you", "we", "us", "myself", "yourself", "one"})
+
+
+_NEAREST = Word("nearest", "near", "ADJ", "JJS", "amod")
+# Ends a thing has, one of them named by what it faces ("the hall end of the table").
+_END_WORDS = frozenset({"end", "side"})
+
+
+def end_toward(sentence: list[Word]) -> list[Word]:
+    """ "the hall end of the dining table", "the window side of the bed" as "the end of the
+    dining table nearest the hall": an end named by the room or thing it faces."""
+    texts = [w.text for w in sentence]
+    for k in range(len(sentence) - 5):
+        if texts[k] != "the" or sentence[k + 1].pos not in ("NOUN", "PROPN"):
+            continue
+        if texts[k + 2] not in _END_WORDS or texts[k + 3] != "of" or texts[k + 4] != "the":
+            continue
+        n = k + 5
+        while n < len(sentence) and sentence[n].pos in ("NOUN", "PROPN", "ADJ"):
+            n += 1
+        if n == k + 5 or sentence[n - 1].pos not in ("NOUN", "PROPN"):
+            continue
+        toward = sentence[k + 1]
+        return [*sentence[: k + 1], *sentence[k + 2 : n], _NEAREST, THE, toward, *sentence[n:]]
+    return sentence
+
+
+def ordinal_along(sentence: list[Word]) -> list[Word]:
+    """ "the second chair along on your left" as "the second chair on your left": "along"
+    between a counted thing and its side says nothing more."""
+    out = list(sentence)
+    for k in range(len(sentence) - 2, 0, -1):
+        if sentence[k].text != "along" or sentence[k - 1].pos not in ("NOUN", "PROPN"):
+            continue
+        nxt = sentence[k + 1].text
+        if nxt in ("on", "from", "to") and any(w.text in ("left", "right") for w in sentence[k:]):
+            del out[k]
+    return out
