@@ -148,8 +148,16 @@ def test_unobserved_attributes_are_neutral_not_mismatches() -> None:
 def test_closest_measures_from_a_long_landmark_s_box() -> None:
     """A curtain 3 m long is near all along it: the cushion by its far end is closer to
     it than one that stands 1 m out from its middle, though farther from its centre."""
-    from inherit_sg.model import BBox3D, Edge, EdgeKind, FloorNode, Layer, ObjectNode, SceneGraph
-    from inherit_sg.model import make_id
+    from inherit_sg.model import (
+        BBox3D,
+        Edge,
+        EdgeKind,
+        FloorNode,
+        Layer,
+        ObjectNode,
+        SceneGraph,
+        make_id,
+    )
     from inherit_sg.retrieval.snapshot import build_snapshot
 
     g = SceneGraph()
