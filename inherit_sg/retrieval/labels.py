@@ -3,7 +3,8 @@
 A request word names the kinds it covers ("couch" → sofa, "seat" → chair, sofa, …); a
 word no vocabulary knows names itself, lemmatised ("toolboxes" → "toolbox") — any noun
 phrase can be a target or a landmark. A map label is brought to its canonical kind
-("bedside table" → nightstand) so that both sides meet on one name.
+("bedside table" → nightstand; an annotator's slip mended, "chandellier" → chandelier)
+so that both sides meet on one name.
 """
 
 from __future__ import annotations
@@ -35,5 +36,18 @@ def map_label_kinds(label: str) -> tuple[str, ...]:
     text = _clean(label)
     if not text:
         return ()
-    canon = object_vocab.canonical_label(text)
+    canon = object_vocab.canonical_label(text) or _misspelt_kind(text)
     return (canon,) if canon else (lemma_phrase(text),)
+
+
+def _misspelt_kind(text: str) -> str | None:
+    """The kind a map label names when an annotator's slip is mended word by word
+    ("chandellier", "picutre", "nighstand", "coutertop"); None when nothing changes or
+    the mended label names no kind."""
+    from inherit_sg.retrieval.rules.spelling import correct_word
+
+    words = text.split()
+    mended = [correct_word(w) or w for w in words]
+    if mended == words:
+        return None
+    return object_vocab.canonical_label(" ".join(mended))

@@ -92,3 +92,14 @@ def test_not_the_closest_one_is_any_other() -> None:
     assert closest[0].id == "obj:m1"
     other, _ = rank(snap, parse_rules("the monitor which is not closest to the window"))
     assert other[0].id != "obj:m1" and other[-1].id in ("obj:m1", "obj:w")
+
+
+def test_a_map_label_an_annotator_misspelt_names_its_kind() -> None:
+    from inherit_sg.retrieval.labels import map_label_kinds
+
+    assert map_label_kinds("chandellier") == ("chandelier",)
+    assert map_label_kinds("nighstand") == ("nightstand",)
+    assert map_label_kinds("coutertop") == ("counter",)
+    # a real word stands as written; a word nothing mends names itself
+    assert map_label_kinds("tablet") == ("tablet",)
+    assert map_label_kinds("unkown") == ("unkown",)
