@@ -900,3 +900,23 @@ def ordinal_along(sentence: list[Word]) -> list[Word]:
         if nxt in ("on", "from", "to") and any(w.text in ("left", "right") for w in sentence[k:]):
             del out[k]
     return out
+
+
+_LOOKING = Word("looking", "look", "VERB", "VBG", "advcl")
+# Who looks, in "from the door you look at the sofa".
+_LOOKERS = frozenset({"you", "i", "we"})
+
+
+def from_then_look(sentence: list[Word]) -> list[Word]:
+    """ "From the door you look at the sofa" as "From the door, looking at the sofa": a
+    standpoint, then what the speaker looks at from it (not "the door you look at")."""
+    if not sentence or sentence[0].text != "from":
+        return sentence
+    facing = lexicon().facing_verbs
+    for k in range(2, min(len(sentence) - 1, 10)):
+        word, verb = sentence[k], sentence[k + 1]
+        if word.text == ",":
+            return sentence
+        if word.text in _LOOKERS and verb.lemma in facing and verb.tag in ("VBP", "VB"):
+            return [*sentence[:k], COMMA, _LOOKING, *sentence[k + 2 :]]
+    return sentence
