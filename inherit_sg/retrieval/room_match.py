@@ -63,6 +63,9 @@ MIN_MATCH = 0.1
 # A matched room that is not the one a qualifier means ("the guest bathroom" for the
 # bathroom off the bedroom) keeps this share of its similarity.
 QUALIFIER_MISS = 0.6
+# The main room of a type keeps this share when another one is asked for ("the second
+# bathroom" rules the main one out more surely than "the small bathroom" picks one).
+OTHER_MISS = 0.3
 # "The big bathroom" with one room labelled a bathroom compares it with the rooms that
 # match at least this well (an alternative inferred at half the best type's probability).
 SIZE_PEER = 0.7
@@ -334,15 +337,17 @@ def rooms_beside(out: Matches, beside: str, snap: MapSnapshot) -> None:
     _lower_unmeant(out, matched, meant, f"the one by the {beside} is meant")
 
 
-def _lower_unmeant(out: Matches, matched: list[str], meant: set[str], reason: str) -> None:
-    """Lower the ``matched`` rooms not in ``meant`` to :data:`QUALIFIER_MISS` of their
-    similarity, saying ``reason``; nothing changes unless ``matched`` holds both kinds."""
+def _lower_unmeant(
+    out: Matches, matched: list[str], meant: set[str], reason: str, keep: float = QUALIFIER_MISS
+) -> None:
+    """Lower the ``matched`` rooms not in ``meant`` to ``keep`` of their similarity,
+    saying ``reason``; nothing changes unless ``matched`` holds both kinds."""
     if not meant or len(meant) == len(matched):
         return
     for rid in matched:
         if rid not in meant:
             value, why = out[rid]
-            out[rid] = (value * QUALIFIER_MISS, f"{why}; but {reason}")
+            out[rid] = (value * keep, f"{why}; but {reason}")
 
 
 def _opens_onto(rid: str, types: frozenset[str], snap: MapSnapshot) -> bool:
@@ -389,6 +394,19 @@ def _by_entrance(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     _lower_unmeant(out, list(masks), {meant}, f"the {qualifier} one is meant ({where} the way in)")
 
 
+def _other_than_main(out: Matches, snap: MapSnapshot) -> None:
+    """Lower the largest of the compared rooms (:func:`_peers`) to
+    :data:`QUALIFIER_MISS` of its similarity: "the second bathroom", "the other bedroom"
+    is not the main one; nothing changes with fewer than two."""
+    full = _peers(out, snap)
+    sized = sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
+    if len(sized) < 2:
+        return
+    main = sized[-1][1]
+    others = {r for _, r in sized[:-1]}
+    _lower_unmeant(out, full, others, f"not the main one ({main})", keep=OTHER_MISS)
+
+
 def _by_size(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     """Lower the fully matched rooms other than the largest ("the big bathroom", "the
     main bedroom") or the smallest ("the small bathroom") one, by floor area, to
@@ -410,6 +428,9 @@ def qualify_rooms(out: Matches, qualifier: str, rtype: str, snap: MapSnapshot) -
     place; nothing changes unless the matched rooms include both kinds."""
     if qualifier in ("largest", "smallest"):
         _by_size(out, qualifier, snap)
+        return
+    if qualifier == "other":
+        _other_than_main(out, snap)
         return
     if qualifier in ("front", "back"):
         _by_entrance(out, qualifier, snap)

@@ -321,7 +321,7 @@ def _room_name_in(phrase: str) -> str | None:
 
 
 # Kinds of room qualifier: whose the room is, and which by size ("the big bathroom").
-QUALIFIER_KINDS = ("private", "shared", "largest", "smallest", "front", "back")
+QUALIFIER_KINDS = ("private", "shared", "largest", "smallest", "front", "back", "other")
 
 
 @lru_cache(maxsize=1)
@@ -339,7 +339,8 @@ def _qualifiers() -> dict[str, str]:
 def room_qualifier(phrase: str) -> str | None:
     """Which of several rooms of a type ``phrase`` means: "private" ("master bathroom",
     "en suite"), "shared" ("guest bathroom", "spare room"), "largest" ("the big
-    bathroom", "the main bedroom"), "smallest" ("the small bathroom") or None, by the
+    bathroom", "the main bedroom"), "smallest" ("the small bathroom"), "front", "back",
+    "other" ("the second bathroom": not the main one) or None, by the
     words of ``[qualifiers]`` in ``rooms.toml`` (the longest phrase found wins)."""
     text = " " + " ".join(_words(phrase)) + " "
     found = [(len(q), kind) for q, kind in _qualifiers().items() if f" {q} " in text]

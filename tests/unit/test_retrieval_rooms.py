@@ -319,3 +319,18 @@ def test_the_front_bathroom_is_the_one_nearest_the_way_in() -> None:
     assert "nearest the way in" in front["room:b"][1]
     back = _room(snap, "bathroom", "back bathroom")
     assert back["room:b"][0] == sure and back["room:s"][0] < sure
+
+
+def test_the_second_bathroom_is_not_the_main_one() -> None:
+    from inherit_sg.retrieval import parse_rules
+    from inherit_sg.retrieval.room_match import OTHER_MISS
+
+    snap = _sized_bathrooms()
+    sure = label_sim(0.9)
+    other = _room(snap, "bathroom", "other bathroom")
+    assert other["room:s"][0] == sure
+    assert other["room:b"][0] == pytest.approx(OTHER_MISS * sure)
+    assert "not the main one" in other["room:b"][1]
+    for text in ("the mirror in the second bathroom", "the sink in the other bathroom"):
+        room = next(c for c in parse_rules(text).constraints if isinstance(c, RoomConstraint))
+        assert room.name == "other bathroom" and room_qualifier(room.name) == "other", text

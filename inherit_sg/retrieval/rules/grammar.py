@@ -1648,6 +1648,12 @@ class Grammar(Cursor):
             None,
         )
         name = f"{size} {np.noun}" if size in ("small", "large") and np.noun else np.noun
+        later = any(
+            isinstance(c, Superlative) and c.landmark is None and (c.ordinal or 0) >= 2
+            for c in np.constraints
+        )
+        if (np.other or later) and name and size is None:
+            name = f"other {name}"  # "the second bathroom", "the other bedroom": not the main one
         if np.room_side and name:
             name = f"{np.room_side} {name}"  # "the front bathroom": the one by the entrance
         return RoomConstraint(
