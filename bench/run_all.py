@@ -48,6 +48,8 @@ MP3D_MORE = {
     "mp3d_tenth": "mp3d_requests_tenth",
     "mp3d_eleventh": "mp3d_requests_eleventh",
     "mp3d_twelfth": "mp3d_requests_twelfth",
+    "mp3d_thirteenth": "mp3d_requests_thirteenth",
+    "mp3d_fourteenth": "mp3d_requests_fourteenth",
 }
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
