@@ -729,6 +729,8 @@ class Grammar(Cursor):
         ):
             self.advance()  # "the bathroom just off the front hall"
             tok = nxt
+        if tok.text == "into" and _leads_somewhere(np) and self._leads_to(np):
+            return True  # "the doorway into the dining room": where it leads
         if tok.has("prep", "away"):
             snap = self.state()
             made = self.parse_pp()
