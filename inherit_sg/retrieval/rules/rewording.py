@@ -920,3 +920,48 @@ def from_then_look(sentence: list[Word]) -> list[Word]:
         if word.text in _LOOKERS and verb.lemma in facing and verb.tag in ("VBP", "VB"):
             return [*sentence[:k], COMMA, _LOOKING, *sentence[k + 2 :]]
     return sentence
+
+
+_I = Word("i", "i", "PRON", "PRP", "nsubj")
+_THING_POS = frozenset({"DET", "PRON", "ADJ", "NOUN", "PROPN", "NUM"})
+
+
+def need_after_deed(sentence: list[Word]) -> list[Word]:
+    """ "I've washed my hands in the bathroom and need something to dry them on" as "I need
+    something to dry my hands on in the bathroom": what the speaker did says what "them"
+    is, and the need that follows is the request (not the hands, the deed's object)."""
+    texts = [w.text for w in sentence]
+    for a, word in enumerate(sentence):
+        if word.text != "and":
+            continue
+        b = a + 1 + (a + 1 < len(sentence) and texts[a + 1] in ("i", "so", "now"))
+        if b >= len(sentence) or sentence[b].lemma not in ("need", "want"):
+            continue
+        k = next(
+            (
+                j
+                for j in range(b + 1, min(len(sentence) - 2, b + 5))
+                if texts[j] == "to"
+                and sentence[j + 1].tag == "VB"
+                and texts[j + 2] in ("it", "them")
+            ),
+            None,
+        )
+        deed = next(
+            (
+                j
+                for j in range(a)
+                if sentence[j].tag in ("VBD", "VBN") and sentence[j].pos == "VERB"
+            ),
+            None,
+        )
+        if k is None or deed is None:
+            return sentence
+        end = deed + 1
+        while end < a and sentence[end].pos in _THING_POS and texts[end] not in ("it", "them"):
+            end += 1
+        thing = sentence[deed + 1 : end]
+        if not any(w.pos in ("NOUN", "PROPN") for w in thing):
+            return sentence
+        return [_I, *sentence[b : k + 2], *thing, *sentence[k + 3 :], *sentence[end:a]]
+    return sentence

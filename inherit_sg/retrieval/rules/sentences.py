@@ -21,6 +21,7 @@ from inherit_sg.retrieval.rules.rewording import (
     end_toward,
     floor_asked,
     from_then_look,
+    need_after_deed,
     non_words,
     only_thing,
     ordinal_along,
@@ -75,7 +76,7 @@ CORRECTION_WORDS = frozenset(
 def prepare(sentences: list[list[Word]]) -> list[list[Word]]:
     """``sentences`` with run-ons split and what is said around the request set aside
     (see the module docstring)."""
-    sentences = [from_then_look(ordinal_along(end_toward(s))) for s in sentences]
+    sentences = [from_then_look(ordinal_along(end_toward(need_after_deed(s)))) for s in sentences]
     sentences = [non_words(without_run_out(without_no_idea(floor_asked(s)))) for s in sentences]
     sentences = [without_failed_condition(without_manner(without_no_longer(s))) for s in sentences]
     sentences = [set_aside_first(without_trailing_caution(which_of_is(s))) for s in sentences]
