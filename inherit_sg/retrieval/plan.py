@@ -321,13 +321,19 @@ def compound_rooms(
         return ()
     absent, _present = _absent_compounds(cons, snap)
     for con, label in absent:
-        words = label.split()
-        rtype = _room_word(words[0])
-        if rtype is None or object_vocab.canonical_label(words[0]) is not None:
-            continue
-        why = f"a {label} is usually in a {rtype} (the map says only {words[-1]})"
-        return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
+        rtype = _compound_room(label)
+        if rtype is not None:
+            why = f"a {label} is usually in a {rtype} (the map says only {label.split()[-1]})"
+            return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
     return ()
+
+
+def _compound_room(label: str) -> str | None:
+    """The room type a compound kind's first word names, when that word is no kind of
+    its own ("dining table": a dining room; not "bar stool", "front door")."""
+    first = label.split()[0]
+    rtype = _room_word(first)
+    return None if rtype is None or object_vocab.canonical_label(first) is not None else rtype
 
 
 def _map_labels(snap: MapSnapshot) -> set[str]:
@@ -355,12 +361,10 @@ def absent_landmark_rooms(
         if not kinds or any(label in _map_labels(snap) for label in con.landmark.target.labels):
             continue
         for label in kinds:
-            words = label.split()
-            rtype = _room_word(words[0])
-            if rtype is None or object_vocab.canonical_label(words[0]) is not None:
-                continue
-            why = f"by a {label}, usually in a {rtype} (the map has no {label})"
-            return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
+            rtype = _compound_room(label)
+            if rtype is not None:
+                why = f"by a {label}, usually in a {rtype} (the map has no {label})"
+                return _implied_room(con.id, rtype, COMPOUND_ROOM_WEIGHT, why)
     return ()
 
 
