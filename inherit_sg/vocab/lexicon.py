@@ -118,6 +118,7 @@ class Lexicon:
     seekers: frozenset[str]
     report_sources: frozenset[str]
     report_verbs: frozenset[str]
+    errand_markers: tuple[str, ...]
     anaphors: frozenset[str]
     other_words: frozenset[str]
     subordinators: frozenset[str]
@@ -230,6 +231,7 @@ def lexicon() -> Lexicon:
         seekers=frozenset(_list(words, "seekers", where)),
         report_sources=frozenset(_list(words, "report_sources", where)),
         report_verbs=frozenset(_list(words, "report_verbs", where)),
+        errand_markers=tuple(_list(words, "errand_markers", where)),
         anaphors=frozenset(_list(words, "anaphors", where)),
         other_words=frozenset(_list(words, "other", where)),
         subordinators=frozenset(_list(words, "subordinators", where)),

@@ -54,7 +54,7 @@ from inherit_sg.retrieval.rules.phrase import (
     VAGUE,
 )
 from inherit_sg.retrieval.rules.problems import open_problem, split_problem, trailing_problem
-from inherit_sg.retrieval.rules.rewording import called_off, without_report_frame
+from inherit_sg.retrieval.rules.rewording import called_off, errand_now, without_report_frame
 from inherit_sg.retrieval.rules.route import route_goal
 from inherit_sg.retrieval.rules.sentences import (
     CORRECTION_WORDS,
@@ -289,7 +289,7 @@ def parse_uncached(text: str) -> ParsedQuery:
     text = check_query_text(text)
     plain, read_as = plain_request(text)
     analysed, fixes = analyse_text(plain)
-    analysed = [without_report_frame(sentence) for sentence in analysed]
+    analysed = [errand_now(without_report_frame(sentence)) for sentence in analysed]
     problem, sentences = split_problem(route_goal(called_off(analysed)))
     obstacle = None
     if problem is None:

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 from itertools import pairwise
 
+from inherit_sg.nlp import known_lemma
 from inherit_sg.retrieval.rules.functions import knows_verb
 from inherit_sg.retrieval.rules.tokens import COMMA, IN, THE, A, Word
 from inherit_sg.vocab.colours import colour_words
@@ -964,4 +965,104 @@ def need_after_deed(sentence: list[Word]) -> list[Word]:
         if not any(w.pos in ("NOUN", "PROPN") for w in thing):
             return sentence
         return [_I, *sentence[b : k + 2], *thing, *sentence[k + 3 :], *sentence[end:a]]
+    return sentence
+
+
+# Words after which a new errand starts in a list of them ("…, but first go to …").
+_ERRAND_BREAKS = frozenset({",", "and", "but", "so"})
+# Words that open what is done before or after the errand ("after lunch, …").
+_TIME_OPENERS = frozenset({"after", "before"})
+# Prepositions that put a time clause somewhere ("after you're in the office, …"): the
+# place is the request's, so the clause stays.
+_PLACING_WORDS = frozenset({"in", "into", "at", "on", "by", "inside"})
+
+
+def errand_now(sentence: list[Word]) -> list[Word]:
+    """Of several errands said at once, the one to do now: "the laundry needs folding,
+    but first go to the oven", "Lunch, then homework, but before that go and straighten
+    the couch", "Sort the recycling, but go to the desk first and clear it", "after the
+    dishes, fix the cushion", "Kids to bed at eight and the laundry can wait - the thing
+    you press …" (``lexicon.toml`` ``errand_markers``). Other sentences as they are."""
+    out = _after_time_clauses(sentence)
+    out = _marked_errand(out)
+    return _without_waiting(out)
+
+
+def _marked_errand(sentence: list[Word]) -> list[Word]:
+    """The errand a marker picks ("but first …", "before that …", "now …", "… first and
+    …"), from the marker on; the sentence when no marker picks one."""
+    texts = [w.text for w in sentence]
+    markers = sorted((m.split() for m in lexicon().errand_markers), key=len, reverse=True)
+    for s in range(1, len(sentence) - 1):
+        if texts[s - 1] not in _ERRAND_BREAKS:
+            continue
+        for marker in markers:
+            end = s + len(marker)
+            if texts[s:end] != marker or end >= len(sentence):
+                continue
+            if marker[-1] in ("first", "now") and not _errand_opens_at(sentence, end):
+                continue  # "…, first floor", "and now the lamp is on"
+            rest = sentence[end:]
+            while rest and rest[0].text == ",":
+                rest = rest[1:]
+            return rest or sentence
+    for f in range(2, len(sentence)):
+        after = texts[f + 1] if f + 1 < len(sentence) else None
+        if texts[f] != "first" or sentence[f].tag != "RB" or after not in (None, ",", "and"):
+            continue
+        start = max((k + 1 for k in range(f) if texts[k] == "but"), default=0)
+        if start > 0:  # "…, but go to the desk first and clear the clutter off it"
+            return [*sentence[start:f], *sentence[f + 1 :]]
+    return sentence
+
+
+def _opens_command(word: Word) -> bool:
+    """Whether ``word`` can open a command after "first" / "now": a comma, or a verb
+    (spaCy's, or an English verb it took for a noun: "but first dust the shelf")."""
+    if word.text == "," or word.tag in ("VB", "VBP"):
+        return True
+    return word.pos in ("NOUN", "PROPN") and word.tag == "NN" and known_lemma(word.text, "verb")
+
+
+def _errand_opens_at(sentence: list[Word], k: int) -> bool:
+    """Whether a command opens at ``k``: a verb, or an English verb spaCy took for a noun
+    with its object's determiner after it ("dust the highest shelf", not "floor:")."""
+    if k >= len(sentence):
+        return False
+    if sentence[k].text == "," or sentence[k].tag in ("VB", "VBP"):
+        return True
+    nxt = sentence[k + 1] if k + 1 < len(sentence) else None
+    return _opens_command(sentence[k]) and nxt is not None and nxt.pos == "DET"
+
+
+def _after_time_clauses(sentence: list[Word]) -> list[Word]:
+    """The sentence without the clauses before its first comma that say when ("after the
+    dishes and the homework, …", "before dinner and after the bins, …")."""
+    out = sentence
+    while len(out) > 2:
+        k = 1 if out[0].text == "and" else 0
+        if out[k].text not in _TIME_OPENERS:
+            break
+        comma = next((j for j in range(k + 1, min(len(out), k + 12)) if out[j].text == ","), None)
+        if comma is None or not _errand_opens_at(out, comma + 1):
+            break  # "after the call i walked off without my laptop, was it …": no errand
+        if any(w.text in _PLACING_WORDS for w in out[k:comma]):
+            break
+        out = out[comma + 1 :]
+    return out
+
+
+def _without_waiting(sentence: list[Word]) -> list[Word]:
+    """The sentence without an errand said to wait ("the laundry can wait - …", "…, the
+    dishes can wait")."""
+    texts = [w.text for w in sentence]
+    for k in range(1, len(sentence) - 1):
+        if texts[k] != "can" or texts[k + 1] != "wait":
+            continue
+        before = max((j for j in range(k) if texts[j] == ","), default=-1)
+        after = next((j for j in range(k + 2, len(sentence)) if texts[j] == ","), None)
+        if after is not None and before < 0:
+            return sentence[after + 1 :]  # "the laundry can wait - the thing you press …"
+        if after is None and before > 0:
+            return sentence[:before]  # "…, put it back straight - the dishes can wait"
     return sentence
