@@ -50,6 +50,7 @@ MP3D_MORE = {
     "mp3d_twelfth": "mp3d_requests_twelfth",
     "mp3d_thirteenth": "mp3d_requests_thirteenth",
     "mp3d_fourteenth": "mp3d_requests_fourteenth",
+    "mp3d_fifteenth": "mp3d_requests_fifteenth",
 }
 MP3D_ROOMS_JSON = ROOT / "bench" / "results" / "mp3d_rooms.json"
 MP3D_OBJECTS_JSON = ROOT / "bench" / "results" / "mp3d_objects.json"
