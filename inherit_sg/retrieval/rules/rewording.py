@@ -1006,6 +1006,13 @@ def _marked_errand(sentence: list[Word]) -> list[Word]:
             while rest and rest[0].text == ",":
                 rest = rest[1:]
             return rest or sentence
+    for s in range(2, len(sentence) - 1):
+        # "Coats up, shoes away, then hoover the armchair": chores said without a verb,
+        # then the one errand the sentence gives a verb
+        then = 2 if texts[s : s + 2] == ["and", "then"] else 1 if texts[s] == "then" else 0
+        listed = not any(w.pos in ("VERB", "AUX") for w in sentence[:s])
+        if then and listed and texts[s - 1] == "," and _errand_opens_at(sentence, s + then):
+            return sentence[s + then :]
     for f in range(2, len(sentence)):
         after = texts[f + 1] if f + 1 < len(sentence) else None
         if texts[f] != "first" or sentence[f].tag != "RB" or after not in (None, ",", "and"):
