@@ -247,7 +247,7 @@ COMPOUND_NEAR_WEIGHT = 0.4
 
 def _absent_compounds(
     cons: tuple[Constraint, ...], snap: MapSnapshot
-) -> tuple[list[tuple[LabelConstraint, str]], set[str]]:
+) -> tuple[list[tuple[LabelConstraint, str]], frozenset[str]]:
     """The positive label constraints asking for a compound kind the map has no label
     for ("bar stool", "dining chair"), each with that compound, and the map's labels
     and their kinds."""
@@ -257,7 +257,7 @@ def _absent_compounds(
         if isinstance(c, LabelConstraint) and not c.negated and any(" " in w for w in c.labels)
     ]
     if not asked:  # most requests name no compound: no need to look at the map's labels
-        return [], set()
+        return [], frozenset()
     present = _map_labels(snap)
     out: list[tuple[LabelConstraint, str]] = []
     for con in asked:
@@ -336,12 +336,16 @@ def _compound_room(label: str) -> str | None:
     return None if rtype is None or object_vocab.canonical_label(first) is not None else rtype
 
 
-def _map_labels(snap: MapSnapshot) -> set[str]:
-    """The map's labels and their kinds."""
-    present: set[str] = set()
-    for raw in snap.raw_labels():
-        present.update({raw.strip().lower(), *canonical_labels(raw)})
-    return present
+def _map_labels(snap: MapSnapshot) -> frozenset[str]:
+    """The map's labels and their kinds (made once per snapshot)."""
+
+    def make() -> frozenset[str]:
+        present: set[str] = set()
+        for raw in snap.raw_labels():
+            present.update({raw.strip().lower(), *canonical_labels(raw)})
+        return frozenset(present)
+
+    return snap.memo("map_labels", make)
 
 
 def absent_landmark_rooms(
@@ -358,7 +362,7 @@ def absent_landmark_rooms(
         if not isinstance(con, RelationConstraint) or con.negated:
             continue
         kinds = [label for label in con.landmark.target.labels if " " in label]
-        if not kinds or any(label in _map_labels(snap) for label in con.landmark.target.labels):
+        if not kinds or not _map_labels(snap).isdisjoint(con.landmark.target.labels):
             continue
         for label in kinds:
             rtype = _compound_room(label)

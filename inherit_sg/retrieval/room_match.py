@@ -394,12 +394,18 @@ def _by_entrance(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     _lower_unmeant(out, list(masks), {meant}, f"the {qualifier} one is meant ({where} the way in)")
 
 
-def _other_than_main(out: Matches, snap: MapSnapshot) -> None:
-    """Lower the largest of the compared rooms (:func:`_peers`) to
-    :data:`QUALIFIER_MISS` of its similarity: "the second bathroom", "the other bedroom"
-    is not the main one; nothing changes with fewer than two."""
+def _sized_peers(out: Matches, snap: MapSnapshot) -> tuple[list[str], list[tuple[float, str]]]:
+    """The compared rooms (:func:`_peers`) and, smallest first, the floor area of those
+    with a mask."""
     full = _peers(out, snap)
-    sized = sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
+    return full, sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
+
+
+def _other_than_main(out: Matches, snap: MapSnapshot) -> None:
+    """Lower the largest of the compared rooms to :data:`OTHER_MISS` of its similarity:
+    "the second bathroom", "the other bedroom" is not the main one; nothing changes with
+    fewer than two."""
+    full, sized = _sized_peers(out, snap)
     if len(sized) < 2:
         return
     main = sized[-1][1]
@@ -414,8 +420,7 @@ def _by_size(out: Matches, qualifier: str, snap: MapSnapshot) -> None:
     their label or best type) are compared, or, when fewer than two are, those matched at
     least :data:`SIZE_PEER` (a bathroom the map took for a toilet); nothing changes with
     fewer than two."""
-    full = _peers(out, snap)
-    sized = sorted((m.area_m2, r) for r in full if (m := snap.rooms[r].mask) is not None)
+    full, sized = _sized_peers(out, snap)
     if len(sized) < 2:
         return
     area, meant = sized[-1] if qualifier == "largest" else sized[0]

@@ -789,8 +789,8 @@ def _any_but(toks: list[Tok]) -> list[Tok]:
     return toks
 
 
-# Determiners that open a command's object right after its verb ("dust the bookcase").
-# Determiners that open the object of a command ("dust the bookcase", "mop my floor").
+# Determiners that open a command's object right after its verb ("dust the bookcase",
+# "mop my floor").
 _OBJECT_DETERMINERS = frozenset(
     {"the", "a", "an", "my", "your", "our", "his", "her", "their", "all", "those", "these",
      "that", "this", "some", "each", "every"}
